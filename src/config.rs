@@ -1,0 +1,269 @@
+//! The machine file (TOML, in mm, mm/min, mm/s², mm/s³ as the keys name) and the machine it
+//! describes (SI). Every key is optional; the defaults are a small 3-axis mill after seed 000,
+//! Table 1 (1.2 mm screw lead, 5000 rpm → 6000 mm/min).
+
+use crate::feed::ProfileKind;
+use crate::servo::ServoParams;
+use serde::{Deserialize, Serialize};
+
+/// How the planner passes the corner between two blocks whose tangents differ.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CornerMode {
+    /// Stop at every corner.
+    ExactStop,
+    /// Seed 003: corner feed F_c = A·T/(1 − cos θ), per axis.
+    AccelerationPeriod,
+    /// Seed 004 eq. 8–10: a circular arc inserted inside the tolerance.
+    Circular,
+    /// Seed 004 §3 eq. 25–57: a quintic transition inside the axis tolerances.
+    #[default]
+    Polynomial,
+}
+
+impl CornerMode {
+    pub const ALL: [CornerMode; 4] = [
+        CornerMode::ExactStop,
+        CornerMode::AccelerationPeriod,
+        CornerMode::Circular,
+        CornerMode::Polynomial,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CornerMode::ExactStop => "exact_stop",
+            CornerMode::AccelerationPeriod => "acceleration_period",
+            CornerMode::Circular => "circular",
+            CornerMode::Polynomial => "polynomial",
+        }
+    }
+}
+
+/// Limits of one axis (SI).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AxisLimits {
+    /// m/s
+    pub max_velocity: f64,
+    /// m/s²
+    pub max_acceleration: f64,
+    /// m/s³
+    pub max_jerk: f64,
+}
+
+impl Default for AxisLimits {
+    fn default() -> Self {
+        AxisLimits {
+            max_velocity: 6000.0 / 60.0 * 1e-3,
+            max_acceleration: 2.0,
+            max_jerk: 50.0,
+        }
+    }
+}
+
+/// The machine, in SI.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Machine {
+    /// s
+    pub interpolation_period: f64,
+    pub lookahead_blocks: usize,
+    pub profile: ProfileKind,
+    pub corner: CornerMode,
+    /// Default G64 tolerance (m).
+    pub path_tolerance: f64,
+    /// Chord error allowed on arcs (m).
+    pub chord_tolerance: f64,
+    /// Largest feed, also the rapid (G0) feed (m/s).
+    pub max_feed: f64,
+    /// Optional path-level acceleration and jerk limits, on top of the axes' (m/s², m/s³).
+    pub max_path_acceleration: Option<f64>,
+    pub max_path_jerk: Option<f64>,
+    /// Snap limit of the jerk15 law (m/s⁴).
+    pub max_snap: f64,
+    pub axes: [AxisLimits; 3],
+    pub servo: [ServoParams; 3],
+}
+
+impl Default for Machine {
+    fn default() -> Self {
+        Machine {
+            interpolation_period: 0.001,
+            lookahead_blocks: 256,
+            profile: ProfileKind::Scurve7,
+            corner: CornerMode::Polynomial,
+            path_tolerance: 0.01e-3,
+            chord_tolerance: 0.001e-3,
+            max_feed: 6000.0 / 60.0 * 1e-3,
+            max_path_acceleration: None,
+            max_path_jerk: None,
+            max_snap: 6.0e6 * 1e-3,
+            axes: [AxisLimits::default(); 3],
+            servo: [
+                ServoParams::default(),
+                ServoParams::default(),
+                ServoParams::default(),
+            ],
+        }
+    }
+}
+
+/// `[axis.x]` in the machine file.
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxisFile {
+    pub max_velocity_mm_min: Option<f64>,
+    pub max_acceleration_mm_s2: Option<f64>,
+    pub max_jerk_mm_s3: Option<f64>,
+}
+
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxesFile {
+    pub x: Option<AxisFile>,
+    pub y: Option<AxisFile>,
+    pub z: Option<AxisFile>,
+}
+
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ServoFile {
+    pub x: Option<toml::Table>,
+    pub y: Option<toml::Table>,
+    pub z: Option<toml::Table>,
+}
+
+/// The machine file as written (mm units).
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MachineFile {
+    pub interpolation_period_s: Option<f64>,
+    pub lookahead_blocks: Option<usize>,
+    pub profile: Option<ProfileKind>,
+    pub corner: Option<CornerMode>,
+    pub path_tolerance_mm: Option<f64>,
+    pub chord_tolerance_mm: Option<f64>,
+    pub max_feed_mm_min: Option<f64>,
+    pub max_path_acceleration_mm_s2: Option<f64>,
+    pub max_path_jerk_mm_s3: Option<f64>,
+    pub max_snap_mm_s4: Option<f64>,
+    pub axis: Option<AxesFile>,
+    pub servo: Option<ServoFile>,
+}
+
+const MM: f64 = 1e-3;
+const MM_MIN: f64 = 1e-3 / 60.0;
+
+impl Machine {
+    /// Parse a machine file; errors name `file:line:col`.
+    pub fn from_toml(text: &str, file: &str) -> Result<Machine, crate::error::ProgramError> {
+        let parsed: MachineFile = toml::from_str(text).map_err(|e| {
+            let (line, col) = e
+                .span()
+                .map(|span| line_col(text, span.start))
+                .unwrap_or((1, 1));
+            crate::error::ProgramError::new(file, line, col, e.message().to_string())
+        })?;
+        let m = Machine::from_file(&parsed)
+            .map_err(|msg| crate::error::ProgramError::new(file, 1, 1, msg))?;
+        Ok(m)
+    }
+
+    /// Apply a parsed machine file over the defaults and check the values.
+    pub fn from_file(f: &MachineFile) -> Result<Machine, String> {
+        let mut m = Machine::default();
+        if let Some(v) = f.interpolation_period_s {
+            m.interpolation_period = v;
+        }
+        if let Some(v) = f.lookahead_blocks {
+            m.lookahead_blocks = v;
+        }
+        if let Some(v) = f.profile {
+            m.profile = v;
+        }
+        if let Some(v) = f.corner {
+            m.corner = v;
+        }
+        if let Some(v) = f.path_tolerance_mm {
+            m.path_tolerance = v * MM;
+        }
+        if let Some(v) = f.chord_tolerance_mm {
+            m.chord_tolerance = v * MM;
+        }
+        if let Some(v) = f.max_feed_mm_min {
+            m.max_feed = v * MM_MIN;
+        }
+        m.max_path_acceleration = f.max_path_acceleration_mm_s2.map(|v| v * MM);
+        m.max_path_jerk = f.max_path_jerk_mm_s3.map(|v| v * MM);
+        if let Some(v) = f.max_snap_mm_s4 {
+            m.max_snap = v * MM;
+        }
+        if let Some(axes) = &f.axis {
+            for (i, a) in [&axes.x, &axes.y, &axes.z].into_iter().enumerate() {
+                if let Some(a) = a {
+                    if let Some(v) = a.max_velocity_mm_min {
+                        m.axes[i].max_velocity = v * MM_MIN;
+                    }
+                    if let Some(v) = a.max_acceleration_mm_s2 {
+                        m.axes[i].max_acceleration = v * MM;
+                    }
+                    if let Some(v) = a.max_jerk_mm_s3 {
+                        m.axes[i].max_jerk = v * MM;
+                    }
+                }
+            }
+        }
+        if let Some(servo) = &f.servo {
+            for (i, s) in [&servo.x, &servo.y, &servo.z].into_iter().enumerate() {
+                if let Some(table) = s {
+                    m.servo[i] = ServoParams::from_table(table)?;
+                }
+            }
+        }
+        m.check()?;
+        Ok(m)
+    }
+
+    /// Every value must be finite and positive where a limit is meant.
+    pub fn check(&self) -> Result<(), String> {
+        let positive = |name: &str, v: f64| -> Result<(), String> {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("{name} must be a positive number, got {v}"))
+            }
+        };
+        positive("interpolation_period_s", self.interpolation_period)?;
+        if self.lookahead_blocks < 2 {
+            return Err(format!(
+                "lookahead_blocks must be at least 2, got {}",
+                self.lookahead_blocks
+            ));
+        }
+        positive("path_tolerance_mm", self.path_tolerance)?;
+        positive("chord_tolerance_mm", self.chord_tolerance)?;
+        positive("max_feed_mm_min", self.max_feed)?;
+        positive("max_snap_mm_s4", self.max_snap)?;
+        if let Some(v) = self.max_path_acceleration {
+            positive("max_path_acceleration_mm_s2", v)?;
+        }
+        if let Some(v) = self.max_path_jerk {
+            positive("max_path_jerk_mm_s3", v)?;
+        }
+        for (axis, a) in ["x", "y", "z"].iter().zip(&self.axes) {
+            positive(&format!("axis.{axis}.max_velocity_mm_min"), a.max_velocity)?;
+            positive(
+                &format!("axis.{axis}.max_acceleration_mm_s2"),
+                a.max_acceleration,
+            )?;
+            positive(&format!("axis.{axis}.max_jerk_mm_s3"), a.max_jerk)?;
+        }
+        Ok(())
+    }
+}
+
+/// 1-based line and column of a byte offset.
+pub fn line_col(text: &str, offset: usize) -> (u32, u32) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() as u32 + 1;
+    let col = before.rfind('\n').map(|i| offset - i).unwrap_or(offset + 1) as u32;
+    (line, col)
+}

@@ -1,0 +1,199 @@
+//! Feed profiles: the law s(t) along one block, from `v_in` to `v_out` through the feed `v_feed`,
+//! within the path limits. Every law here keeps acceleration zero at block ends (seed 004).
+//!
+//! Each law lives in its own file and provides the same four functions:
+//! - `plan(&BlockRequest) -> <Law>`: the block's profile (a plain record, closed form in t);
+//! - `ramp_distance(v1, v2, &Limits)`: distance of the fastest speed change v1 → v2 (a = 0 at both ends);
+//! - `max_entry(length, v_out, &Limits)`: largest v_in ≥ v_out whose ramp down to v_out fits in `length`;
+//! - `max_exit(length, v_in, &Limits)`: largest v_out ≥ v_in whose ramp up from v_in fits in `length`.
+//!
+//! The look-ahead planner only uses these, so every law plans real blocks the same way.
+
+use serde::{Deserialize, Serialize};
+
+pub mod jerk15;
+pub mod mixed57;
+pub mod quintic;
+pub mod scurve7;
+pub mod trapezoid;
+
+/// Kinematic state along the path at one instant: s (m), v (m/s), a (m/s²), j (m/s³).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Kin {
+    pub s: f64,
+    pub v: f64,
+    pub a: f64,
+    pub j: f64,
+}
+
+/// Path-level limits for one block (already projected from the axis limits by `path`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Limits {
+    /// m/s
+    pub v_max: f64,
+    /// m/s²
+    pub a_max: f64,
+    /// m/s³
+    pub j_max: f64,
+    /// m/s⁴ (jerk15 only)
+    pub snap_max: f64,
+}
+
+/// The acc/dec law, chosen by `profile` in the machine file and `machine.profile` in the FMU.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProfileKind {
+    #[default]
+    Scurve7,
+    Quintic,
+    Jerk15,
+    Mixed57,
+    Trapezoid,
+}
+
+impl ProfileKind {
+    pub const ALL: [ProfileKind; 5] = [
+        ProfileKind::Scurve7,
+        ProfileKind::Quintic,
+        ProfileKind::Jerk15,
+        ProfileKind::Mixed57,
+        ProfileKind::Trapezoid,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ProfileKind::Scurve7 => "scurve7",
+            ProfileKind::Quintic => "quintic",
+            ProfileKind::Jerk15 => "jerk15",
+            ProfileKind::Mixed57 => "mixed57",
+            ProfileKind::Trapezoid => "trapezoid",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<ProfileKind> {
+        ProfileKind::ALL.into_iter().find(|k| k.name() == name)
+    }
+}
+
+/// What one block asks of the feed law.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BlockRequest {
+    /// Block length L (m).
+    pub length: f64,
+    /// Entry speed V_In (m/s), acceleration zero.
+    pub v_in: f64,
+    /// Wanted exit speed V_Out (m/s); the profile reports the one actually reached.
+    pub v_out: f64,
+    /// Programmed feed V_F (m/s), the cruise speed if reachable.
+    pub v_feed: f64,
+    pub limits: Limits,
+}
+
+/// The behaviour every profile record shares.
+pub trait FeedLaw {
+    /// Total duration (s).
+    fn duration(&self) -> f64;
+    /// Distance covered (m); equals the block length unless the request was impossible.
+    fn length(&self) -> f64;
+    /// Exit speed actually reached (m/s).
+    fn v_end(&self) -> f64;
+    /// State at time t ∈ [0, duration] (clamped outside).
+    fn at(&self, t: f64) -> Kin;
+    /// Phase durations (s), in order (7 for scurve7, 15 for jerk15, ...).
+    fn phases(&self) -> Vec<f64>;
+}
+
+/// One block's profile, whatever the law: a plain record, evaluated in closed form.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Profile {
+    Scurve7(scurve7::Scurve7),
+    Quintic(quintic::Quintic),
+    Jerk15(jerk15::Jerk15),
+    Mixed57(mixed57::Mixed57),
+    Trapezoid(trapezoid::Trapezoid),
+}
+
+macro_rules! dispatch {
+    ($self:expr, $p:ident => $e:expr) => {
+        match $self {
+            Profile::Scurve7($p) => $e,
+            Profile::Quintic($p) => $e,
+            Profile::Jerk15($p) => $e,
+            Profile::Mixed57($p) => $e,
+            Profile::Trapezoid($p) => $e,
+        }
+    };
+}
+
+impl Profile {
+    pub fn plan(kind: ProfileKind, req: &BlockRequest) -> Profile {
+        match kind {
+            ProfileKind::Scurve7 => Profile::Scurve7(scurve7::plan(req)),
+            ProfileKind::Quintic => Profile::Quintic(quintic::plan(req)),
+            ProfileKind::Jerk15 => Profile::Jerk15(jerk15::plan(req)),
+            ProfileKind::Mixed57 => Profile::Mixed57(mixed57::plan(req)),
+            ProfileKind::Trapezoid => Profile::Trapezoid(trapezoid::plan(req)),
+        }
+    }
+
+    pub fn kind(&self) -> ProfileKind {
+        match self {
+            Profile::Scurve7(_) => ProfileKind::Scurve7,
+            Profile::Quintic(_) => ProfileKind::Quintic,
+            Profile::Jerk15(_) => ProfileKind::Jerk15,
+            Profile::Mixed57(_) => ProfileKind::Mixed57,
+            Profile::Trapezoid(_) => ProfileKind::Trapezoid,
+        }
+    }
+}
+
+impl FeedLaw for Profile {
+    fn duration(&self) -> f64 {
+        dispatch!(self, p => p.duration())
+    }
+    fn length(&self) -> f64 {
+        dispatch!(self, p => p.length())
+    }
+    fn v_end(&self) -> f64 {
+        dispatch!(self, p => p.v_end())
+    }
+    fn at(&self, t: f64) -> Kin {
+        dispatch!(self, p => p.at(t))
+    }
+    fn phases(&self) -> Vec<f64> {
+        dispatch!(self, p => p.phases())
+    }
+}
+
+/// Distance of the fastest speed change v1 → v2 with the given law (a = 0 at both ends).
+pub fn ramp_distance(kind: ProfileKind, v1: f64, v2: f64, lim: &Limits) -> f64 {
+    match kind {
+        ProfileKind::Scurve7 => scurve7::ramp_distance(v1, v2, lim),
+        ProfileKind::Quintic => quintic::ramp_distance(v1, v2, lim),
+        ProfileKind::Jerk15 => jerk15::ramp_distance(v1, v2, lim),
+        ProfileKind::Mixed57 => mixed57::ramp_distance(v1, v2, lim),
+        ProfileKind::Trapezoid => trapezoid::ramp_distance(v1, v2, lim),
+    }
+}
+
+/// Largest entry speed v_in ≥ v_out from which the law can slow to v_out within `length`.
+pub fn max_entry(kind: ProfileKind, length: f64, v_out: f64, lim: &Limits) -> f64 {
+    match kind {
+        ProfileKind::Scurve7 => scurve7::max_entry(length, v_out, lim),
+        ProfileKind::Quintic => quintic::max_entry(length, v_out, lim),
+        ProfileKind::Jerk15 => jerk15::max_entry(length, v_out, lim),
+        ProfileKind::Mixed57 => mixed57::max_entry(length, v_out, lim),
+        ProfileKind::Trapezoid => trapezoid::max_entry(length, v_out, lim),
+    }
+}
+
+/// Largest exit speed v_out ≥ v_in the law can reach from v_in within `length`.
+pub fn max_exit(kind: ProfileKind, length: f64, v_in: f64, lim: &Limits) -> f64 {
+    match kind {
+        ProfileKind::Scurve7 => scurve7::max_exit(length, v_in, lim),
+        ProfileKind::Quintic => quintic::max_exit(length, v_in, lim),
+        ProfileKind::Jerk15 => jerk15::max_exit(length, v_in, lim),
+        ProfileKind::Mixed57 => mixed57::max_exit(length, v_in, lim),
+        ProfileKind::Trapezoid => trapezoid::max_exit(length, v_in, lim),
+    }
+}
