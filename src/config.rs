@@ -156,14 +156,11 @@ impl Machine {
     /// Parse a machine file; errors name `file:line:col`.
     pub fn from_toml(text: &str, file: &str) -> Result<Machine, crate::error::ProgramError> {
         let parsed: MachineFile = toml::from_str(text).map_err(|e| {
-            let (line, col) = e
-                .span()
-                .map(|span| line_col(text, span.start))
-                .unwrap_or((1, 1));
+            let (line, col) = e.span().map(|span| line_col(text, span.start)).unwrap_or((1, 1));
             crate::error::ProgramError::new(file, line, col, e.message().to_string())
         })?;
-        let m = Machine::from_file(&parsed)
-            .map_err(|msg| crate::error::ProgramError::new(file, 1, 1, msg))?;
+        let m =
+            Machine::from_file(&parsed).map_err(|msg| crate::error::ProgramError::new(file, 1, 1, msg))?;
         Ok(m)
     }
 
@@ -250,10 +247,7 @@ impl Machine {
         }
         for (axis, a) in ["x", "y", "z"].iter().zip(&self.axes) {
             positive(&format!("axis.{axis}.max_velocity_mm_min"), a.max_velocity)?;
-            positive(
-                &format!("axis.{axis}.max_acceleration_mm_s2"),
-                a.max_acceleration,
-            )?;
+            positive(&format!("axis.{axis}.max_acceleration_mm_s2"), a.max_acceleration)?;
             positive(&format!("axis.{axis}.max_jerk_mm_s3"), a.max_jerk)?;
         }
         Ok(())

@@ -67,8 +67,7 @@ pub fn plan(req: &BlockRequest) -> Trapezoid {
     let v_peak = v_feed.min(v_tri);
     let t1 = (v_peak - v_in) / a;
     let t3 = (v_peak - v_out) / a;
-    let cruise =
-        l - ramp_distance(v_in, v_peak, &req.limits) - ramp_distance(v_peak, v_out, &req.limits);
+    let cruise = l - ramp_distance(v_in, v_peak, &req.limits) - ramp_distance(v_peak, v_out, &req.limits);
     let t2 = if v_peak > 0.0 {
         (cruise / v_peak).max(0.0)
     } else {
@@ -168,10 +167,7 @@ mod tests {
         let p = plan(&req);
         assert!((p.duration() - 2.0 * (0.004f64 / 2.0).sqrt()).abs() < 1e-15);
         // Trapezoid: t = L/V + V/A.
-        let req = BlockRequest {
-            length: 0.02,
-            ..req
-        };
+        let req = BlockRequest { length: 0.02, ..req };
         let p = plan(&req);
         assert!((p.duration() - (0.02 / 0.1 + 0.1 / 2.0)).abs() < 1e-15);
         let end = p.at(p.duration());
