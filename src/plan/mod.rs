@@ -1,8 +1,24 @@
-//! Look-ahead planner: decides each segment's entry and exit speeds over a bounded window.
+//! Look-ahead planner: decides each segment's entry and exit speeds over a bounded window of
+//! `lookahead_blocks` segments, so that every planned V_out is reachable by the feed law.
+//!
+//! - Backward pass: from the window's end (where a stop is assumed, as a real NC does when its
+//!   look-ahead is full), each segment's entry limit is the largest speed from which the law can
+//!   still slow to what the next segment accepts. With acceleration zero at block ends the jerk-
+//!   limited ramp distance D(v1, v2) = (v1 + v2)/2 · T(|v2 − v1|) is *not* monotone in the exit
+//!   speed (slowing from v to v/3 can take longer than stopping), so the entry limit is the larger
+//!   of "slow to the next limit" and "stop at the block end" (D is unimodal in the exit speed on
+//!   [0, v], so the best exit below the limit is one of the two interval ends).
+//! - Forward pass: from the actual entry speed, the exit is the next limit if reachable, the best
+//!   reachable speed otherwise (accelerating: `max_exit`; slowing: the largest exit on the rising
+//!   branch of D, found by a fixed number of bisection steps — only when a stop was planned).
+//!
+//! Work is per block: the window is refilled, swept backwards until the limits stop changing, and
+//! its first half emitted, so each block costs O(1) profile solves amortised.
 
-use crate::feed::Profile;
-use crate::path::PathBlock;
+use crate::feed::{self, BlockRequest, FeedLaw, Profile, ProfileKind};
+use crate::path::{PathBlock, Segment};
 use serde::{Deserialize, Serialize};
+use std::collections::VecDeque;
 
 /// A segment with its speeds decided and its feed profile.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -11,4 +27,222 @@ pub struct Planned {
     pub v_in: f64,
     pub v_out: f64,
     pub profile: Profile,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct Entry {
+    block: PathBlock,
+    /// Largest entry speed the segment and its junction with the previous one allow.
+    v_in_cap: f64,
+    /// Entry limit from the backward pass (NaN until computed).
+    v_in_lim: f64,
+}
+
+/// The bounded look-ahead window.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Planner {
+    kind: ProfileKind,
+    capacity: usize,
+    window: VecDeque<Entry>,
+    /// Actual exit speed of the last emitted segment (entry of the next one).
+    v_prev: f64,
+    /// Junction limit after the last segment pushed (0 before the first).
+    junction_prev: f64,
+    /// Feed multiplier for segments pushed from now on (feed override above 100 %).
+    feed_scale: f64,
+}
+
+/// Iterations of the bounded bisection (interval shrinks by 2⁻⁶⁰, below f64 resolution).
+const BISECTION_STEPS: usize = 60;
+
+impl Planner {
+    pub fn new(kind: ProfileKind, lookahead_blocks: usize) -> Planner {
+        Planner {
+            kind,
+            capacity: lookahead_blocks.max(2),
+            window: VecDeque::with_capacity(lookahead_blocks.max(2)),
+            v_prev: 0.0,
+            junction_prev: 0.0,
+            feed_scale: 1.0,
+        }
+    }
+
+    pub fn kind(&self) -> ProfileKind {
+        self.kind
+    }
+
+    /// Scale the feed of segments pushed from now on (≥ 1; capped by each segment's limits).
+    pub fn set_feed_scale(&mut self, scale: f64) {
+        self.feed_scale = scale.clamp(1.0, 2.0);
+    }
+
+    /// Take one segment; emit planned segments to `out` when the window is full.
+    pub fn push(&mut self, mut block: PathBlock, out: &mut VecDeque<Planned>) {
+        if self.feed_scale != 1.0 && !block.constant_speed {
+            block.v_feed = (block.v_feed * self.feed_scale).min(block.limits.v_max);
+        }
+        let dwell = matches!(block.segment, Segment::Dwell { .. });
+        let mut v_in_cap = block.v_feed.min(self.junction_prev);
+        if dwell {
+            v_in_cap = 0.0;
+        }
+        self.junction_prev = if dwell { 0.0 } else { block.v_end_max.min(block.v_feed) };
+        self.window.push_back(Entry { block, v_in_cap, v_in_lim: f64::NAN });
+        if self.window.len() >= self.capacity {
+            self.backward();
+            for _ in 0..self.capacity / 2 {
+                self.emit_front(out);
+            }
+        }
+    }
+
+    /// End of program: plan everything left, stopping at the end.
+    pub fn finish(&mut self, out: &mut VecDeque<Planned>) {
+        self.backward();
+        while !self.window.is_empty() {
+            self.emit_front(out);
+        }
+        self.junction_prev = 0.0;
+    }
+
+    /// Number of segments waiting in the window.
+    pub fn pending(&self) -> usize {
+        self.window.len()
+    }
+
+    /// Backward pass from the window's end (a stop there), until the limits stop changing.
+    fn backward(&mut self) {
+        let mut v_next: f64 = 0.0;
+        for i in (0..self.window.len()).rev() {
+            let e = &self.window[i];
+            let v_exit = v_next.min(e.block.v_end_max);
+            let lim = self.entry_limit(e, v_exit);
+            let e = &mut self.window[i];
+            if lim == e.v_in_lim {
+                break;
+            }
+            e.v_in_lim = lim;
+            v_next = lim;
+        }
+    }
+
+    /// Largest entry speed of a segment whose exit may be at most `v_exit`.
+    fn entry_limit(&self, e: &Entry, v_exit: f64) -> f64 {
+        let cap = e.v_in_cap;
+        if cap <= v_exit || e.block.constant_speed {
+            return cap.min(v_exit);
+        }
+        let length = e.block.segment.length();
+        let lim = &e.block.limits;
+        let slow_to_next = feed::max_entry(self.kind, length, v_exit, lim);
+        let stop = feed::max_entry(self.kind, length, 0.0, lim);
+        cap.min(slow_to_next.max(stop))
+    }
+
+    /// Forward pass for the front segment: decide its exit, plan its profile, emit it.
+    fn emit_front(&mut self, out: &mut VecDeque<Planned>) {
+        let Some(e) = self.window.pop_front() else { return };
+        let v_next = self.window.front().map_or(0.0, |n| n.v_in_lim);
+        let v_in = self.v_prev.min(e.v_in_cap.max(0.0));
+        let target = v_next.min(e.block.v_end_max).max(0.0);
+        let length = e.block.segment.length();
+        let lim = e.block.limits;
+        let v_out = if matches!(e.block.segment, Segment::Dwell { .. }) {
+            0.0
+        } else if e.block.constant_speed {
+            v_in
+        } else if target >= v_in {
+            target.min(feed::max_exit(self.kind, length, v_in, &lim))
+        } else if feed::ramp_distance(self.kind, v_in, target, &lim) <= length {
+            target
+        } else {
+            self.best_slow_exit(v_in, target, length, &lim)
+        };
+        let v_feed = if e.block.constant_speed { v_in } else { e.block.v_feed.max(v_in).max(v_out) };
+        let req = BlockRequest { length, v_in, v_out, v_feed, limits: lim };
+        let profile = Profile::plan(self.kind, &req);
+        let v_out = profile.v_end();
+        self.v_prev = v_out;
+        out.push_back(Planned { block: e.block, v_in, v_out, profile });
+    }
+
+    /// Largest exit x ≤ `target` with D(v_in, x) ≤ length, when D(v_in, target) > length: D rises
+    /// from x = 0 to a peak then falls, and D(v_in, 0) ≤ length (the backward pass planned a stop),
+    /// so the answer is the crossing on the rising branch.
+    fn best_slow_exit(&self, v_in: f64, target: f64, length: f64, lim: &feed::Limits) -> f64 {
+        let (mut lo, mut hi) = (0.0, target);
+        if feed::ramp_distance(self.kind, v_in, 0.0, lim) > length {
+            return 0.0;
+        }
+        for _ in 0..BISECTION_STEPS {
+            let mid = 0.5 * (lo + hi);
+            if feed::ramp_distance(self.kind, v_in, mid, lim) <= length {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Machine;
+    use crate::path::{line_limits, Line};
+
+    fn line_block(from: f64, to: f64, feed: f64, v_end_max: f64) -> PathBlock {
+        let machine = Machine::default();
+        let line = Line { start: [from, 0.0, 0.0], end: [to, 0.0, 0.0] };
+        let limits = line_limits(line.direction(), &machine);
+        PathBlock {
+            line: 1,
+            segment: Segment::Line(line),
+            v_feed: feed.min(limits.v_max),
+            limits,
+            v_end_max,
+            constant_speed: false,
+        }
+    }
+
+    fn plan_all(kind: ProfileKind, blocks: &[PathBlock], window: usize) -> Vec<Planned> {
+        let mut planner = Planner::new(kind, window);
+        let mut out = VecDeque::new();
+        for b in blocks {
+            planner.push(*b, &mut out);
+        }
+        planner.finish(&mut out);
+        out.into_iter().collect()
+    }
+
+    #[test]
+    fn speeds_chain_and_stop_at_end() {
+        for kind in ProfileKind::ALL {
+            let blocks: Vec<_> =
+                (0..50).map(|i| line_block(i as f64 * 1e-3, (i + 1) as f64 * 1e-3, 0.05, 1.0)).collect();
+            for window in [2, 7, 256] {
+                let planned = plan_all(kind, &blocks, window);
+                assert_eq!(planned.len(), 50);
+                assert_eq!(planned[0].v_in, 0.0);
+                assert!(planned.last().unwrap().v_out.abs() < 1e-9, "{kind:?} must stop at the end");
+                for w in planned.windows(2) {
+                    assert_eq!(w[0].v_out, w[1].v_in);
+                }
+                for p in &planned {
+                    assert!((p.profile.length() - 1e-3).abs() < 1e-12, "{kind:?}: length kept");
+                    assert!(p.v_in <= 0.05 + 1e-12 && p.v_out <= 0.05 + 1e-12);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn junction_limit_is_respected() {
+        let mut blocks: Vec<_> = (0..4).map(|i| line_block(i as f64 * 0.01, (i + 1) as f64 * 0.01, 0.1, 1.0)).collect();
+        blocks[1].v_end_max = 0.0;
+        let planned = plan_all(ProfileKind::Scurve7, &blocks, 256);
+        assert_eq!(planned[1].v_out, 0.0);
+        assert_eq!(planned[2].v_in, 0.0);
+    }
 }
