@@ -13,6 +13,7 @@ pub mod feed;
 pub mod gcode;
 pub mod interp;
 pub mod path;
+pub mod package;
 pub mod plan;
 pub mod servo;
 

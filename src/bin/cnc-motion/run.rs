@@ -1,0 +1,187 @@
+//! `cnc-motion run`: a whole program through the engine, tick by tick; summary, CSV, progress.
+
+use clap::Args;
+use cnc_motion::config::Machine;
+use cnc_motion::engine::Engine;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::{IsTerminal, Write};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+const MM: f64 = 1e-3;
+
+#[derive(Args)]
+pub struct RunArgs {
+    /// G-code program file.
+    program: String,
+    /// Machine file (TOML); defaults when absent.
+    #[arg(long)]
+    machine: Option<String>,
+    /// Write every tick to this CSV file.
+    #[arg(long)]
+    csv: Option<String>,
+    /// Simulate the servo-axis drives too.
+    #[arg(long)]
+    servo: bool,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Stop after this many seconds of simulated time even if the program is not done.
+    #[arg(long, default_value_t = 86_400.0)]
+    max_time: f64,
+}
+
+/// Running maxima of |x| per axis.
+#[derive(Default)]
+struct Peaks([f64; 3]);
+
+impl Peaks {
+    fn take(&mut self, x: [f64; 3]) {
+        for (m, v) in self.0.iter_mut().zip(x) {
+            *m = m.max(v.abs());
+        }
+    }
+    fn mm(&self) -> [f64; 3] {
+        self.0.map(|v| v / MM)
+    }
+}
+
+pub fn run(args: &RunArgs) -> ExitCode {
+    match run_inner(args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("{message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run_inner(args: &RunArgs) -> Result<(), String> {
+    let text = std::fs::read_to_string(&args.program).map_err(|e| format!("{}: {e}", args.program))?;
+    let machine = match &args.machine {
+        Some(path) => {
+            let toml = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+            Machine::from_toml(&toml, path).map_err(|e| e.to_string())?
+        }
+        None => Machine::default(),
+    };
+    let lines = text.lines().count().max(1) as u64;
+    let mut engine = Engine::new(Arc::from(text), &args.program, &machine)
+        .map_err(|e| e.to_string())?
+        .with_servo(args.servo);
+
+    let mut csv = match &args.csv {
+        Some(path) => {
+            let f = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
+            let mut w = std::io::BufWriter::new(f);
+            writeln!(
+                w,
+                "time_s,line,x_mm,y_mm,z_mm,feed_mm_s,vx_mm_s,vy_mm_s,vz_mm_s,ax_mm_s2,ay_mm_s2,az_mm_s2,\
+                 jx_mm_s3,jy_mm_s3,jz_mm_s3,x_act_mm,y_act_mm,z_act_mm"
+            )
+            .map_err(|e| format!("{path}: {e}"))?;
+            Some((path.clone(), w))
+        }
+        None => None,
+    };
+
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new(lines);
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} line {pos}/{len} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        Some(bar)
+    } else {
+        None
+    };
+
+    let (mut v, mut a, mut j, mut fe) = (Peaks::default(), Peaks::default(), Peaks::default(), Peaks::default());
+    let mut max_contour: f64 = 0.0;
+    let mut n: u64 = 0;
+    while !engine.finished() && engine.time() < args.max_time {
+        let tick = *engine.step().map_err(|e| e.to_string())?;
+        v.take(tick.v);
+        a.take(tick.a);
+        j.take(tick.j);
+        let axes = engine.axes();
+        fe.take(axes.map(|s| s.following_error));
+        max_contour = max_contour.max(engine.contour_error());
+        if let Some((path, w)) = csv.as_mut() {
+            let p = tick.p.map(|x| x / MM);
+            let (tv, ta, tj) = (tick.v.map(|x| x / MM), tick.a.map(|x| x / MM), tick.j.map(|x| x / MM));
+            let act = axes.map(|s| s.position / MM);
+            writeln!(
+                w,
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                tick.t,
+                tick.line,
+                p[0],
+                p[1],
+                p[2],
+                tick.feed / MM,
+                tv[0],
+                tv[1],
+                tv[2],
+                ta[0],
+                ta[1],
+                ta[2],
+                tj[0],
+                tj[1],
+                tj[2],
+                act[0],
+                act[1],
+                act[2]
+            )
+            .map_err(|e| format!("{path}: {e}"))?;
+        }
+        n += 1;
+        if let Some(bar) = &bar {
+            if n % 1000 == 0 {
+                bar.set_position(tick.line as u64);
+                bar.set_message(format!("t = {:.3} s", tick.t));
+            }
+        }
+    }
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    if let Some((path, mut w)) = csv {
+        w.flush().map_err(|e| format!("{path}: {e}"))?;
+    }
+    if !engine.finished() {
+        return Err(format!(
+            "{}: not finished after --max-time {} s of simulated time",
+            args.program, args.max_time
+        ));
+    }
+    let tick = engine.tick();
+    let mut summary = serde_json::json!({
+        "program": args.program,
+        "profile": machine.profile.name(),
+        "corner": machine.corner.name(),
+        "interpolation_period_s": machine.interpolation_period,
+        "total_time_s": engine.finish_time().unwrap_or(engine.time()),
+        "motion_time_s": engine.motion_time(),
+        "ticks": n,
+        "path_length_mm": tick.distance / MM,
+        "motion_blocks": engine.motion_blocks(),
+        "end_position_mm": tick.p.map(|x| x / MM),
+        "max_axis_velocity_mm_s": v.mm(),
+        "max_axis_acceleration_mm_s2": a.mm(),
+        "max_axis_jerk_mm_s3": j.mm(),
+    });
+    if args.servo {
+        summary["max_following_error_mm"] = serde_json::json!(fe.mm());
+        summary["max_contour_error_mm"] = serde_json::json!(max_contour / MM);
+    }
+    if args.json {
+        println!("{summary}");
+    } else {
+        let map = summary.as_object().map(|m| m.iter().collect::<Vec<_>>()).unwrap_or_default();
+        for (key, value) in map {
+            println!("{key:32} {value}");
+        }
+    }
+    Ok(())
+}
