@@ -32,8 +32,16 @@ impl TimeScale {
     fn new(machine: &Machine) -> TimeScale {
         // Half the slowest axis' acceleration and jerk at the machine's top feed, so the override
         // transient adds at most that much to a planned motion.
-        let a = machine.axes.iter().map(|x| x.max_acceleration).fold(f64::INFINITY, f64::min);
-        let j = machine.axes.iter().map(|x| x.max_jerk).fold(f64::INFINITY, f64::min);
+        let a = machine
+            .axes
+            .iter()
+            .map(|x| x.max_acceleration)
+            .fold(f64::INFINITY, f64::min);
+        let j = machine
+            .axes
+            .iter()
+            .map(|x| x.max_jerk)
+            .fold(f64::INFINITY, f64::min);
         let v_ref = machine.max_feed.max(1e-9);
         TimeScale {
             k: 1.0,
@@ -249,7 +257,11 @@ impl Engine {
     /// One interpolation tick at time `t`.
     fn interpolate(&mut self, t: f64) -> Result<(), ProgramError> {
         let period = self.machine.interpolation_period;
-        let target = if self.feed_hold { 0.0 } else { self.feed_override.min(1.0) };
+        let target = if self.feed_hold {
+            0.0
+        } else {
+            self.feed_override.min(1.0)
+        };
         let mut dt = self.scale.step(target, period);
         loop {
             dt = self.interp.advance(dt, &mut self.queue);
@@ -325,7 +337,9 @@ impl Engine {
         }
         let version = u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
         if version != STATE_VERSION {
-            return Err(format!("engine state version {version}, expected {STATE_VERSION}"));
+            return Err(format!(
+                "engine state version {version}, expected {STATE_VERSION}"
+            ));
         }
         let mut restored: Engine =
             serde_json::from_slice(&bytes[4..]).map_err(|e| format!("engine state: {e}"))?;

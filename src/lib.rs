@@ -12,8 +12,8 @@ pub mod error;
 pub mod feed;
 pub mod gcode;
 pub mod interp;
-pub mod path;
 pub mod package;
+pub mod path;
 pub mod plan;
 pub mod servo;
 

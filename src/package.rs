@@ -4,5 +4,8 @@
 use std::path::Path;
 
 pub fn write_fmu(path: &Path) -> Result<(), String> {
-    Err(format!("{}: the FMU is not part of this build yet", path.display()))
+    Err(format!(
+        "{}: the FMU is not part of this build yet",
+        path.display()
+    ))
 }

@@ -97,7 +97,11 @@ impl Interpolator {
 
     /// Path distance travelled (m).
     pub fn distance(&self) -> f64 {
-        self.distance_done + self.current.as_ref().map_or(0.0, |c| c.planned.profile.at(c.tau).s)
+        self.distance_done
+            + self
+                .current
+                .as_ref()
+                .map_or(0.0, |c| c.planned.profile.at(c.tau).s)
     }
 
     /// True when no block is in progress (the caller knows whether more will come).
@@ -115,7 +119,11 @@ impl Interpolator {
                     return dt;
                 };
                 let duration = block_duration(&planned);
-                self.current = Some(Current { planned, tau: 0.0, duration });
+                self.current = Some(Current {
+                    planned,
+                    tau: 0.0,
+                    duration,
+                });
             }
             let c = self.current.as_mut().expect("current block set above");
             let left = c.duration - c.tau;
@@ -197,9 +205,23 @@ mod tests {
     use crate::path::{Line, PathBlock};
 
     fn planned(from: f64, to: f64, v_in: f64, v_out: f64) -> Planned {
-        let limits = Limits { v_max: 0.1, a_max: 2.0, j_max: 60.0, snap_max: 6e3 };
-        let line = Line { start: [from, 0.0, 0.0], end: [to, 0.0, 0.0] };
-        let req = BlockRequest { length: to - from, v_in, v_out, v_feed: 0.1, limits };
+        let limits = Limits {
+            v_max: 0.1,
+            a_max: 2.0,
+            j_max: 60.0,
+            snap_max: 6e3,
+        };
+        let line = Line {
+            start: [from, 0.0, 0.0],
+            end: [to, 0.0, 0.0],
+        };
+        let req = BlockRequest {
+            length: to - from,
+            v_in,
+            v_out,
+            v_feed: 0.1,
+            limits,
+        };
         Planned {
             block: PathBlock {
                 line: 1,

@@ -86,8 +86,16 @@ impl Planner {
         if dwell {
             v_in_cap = 0.0;
         }
-        self.junction_prev = if dwell { 0.0 } else { block.v_end_max.min(block.v_feed) };
-        self.window.push_back(Entry { block, v_in_cap, v_in_lim: f64::NAN });
+        self.junction_prev = if dwell {
+            0.0
+        } else {
+            block.v_end_max.min(block.v_feed)
+        };
+        self.window.push_back(Entry {
+            block,
+            v_in_cap,
+            v_in_lim: f64::NAN,
+        });
         if self.window.len() >= self.capacity {
             self.backward();
             for _ in 0..self.capacity / 2 {
@@ -158,12 +166,27 @@ impl Planner {
         } else {
             self.best_slow_exit(v_in, target, length, &lim)
         };
-        let v_feed = if e.block.constant_speed { v_in } else { e.block.v_feed.max(v_in).max(v_out) };
-        let req = BlockRequest { length, v_in, v_out, v_feed, limits: lim };
+        let v_feed = if e.block.constant_speed {
+            v_in
+        } else {
+            e.block.v_feed.max(v_in).max(v_out)
+        };
+        let req = BlockRequest {
+            length,
+            v_in,
+            v_out,
+            v_feed,
+            limits: lim,
+        };
         let profile = Profile::plan(self.kind, &req);
         let v_out = profile.v_end();
         self.v_prev = v_out;
-        out.push_back(Planned { block: e.block, v_in, v_out, profile });
+        out.push_back(Planned {
+            block: e.block,
+            v_in,
+            v_out,
+            profile,
+        });
     }
 
     /// Largest exit x ≤ `target` with D(v_in, x) ≤ length, when D(v_in, target) > length: D rises
@@ -194,7 +217,10 @@ mod tests {
 
     fn line_block(from: f64, to: f64, feed: f64, v_end_max: f64) -> PathBlock {
         let machine = Machine::default();
-        let line = Line { start: [from, 0.0, 0.0], end: [to, 0.0, 0.0] };
+        let line = Line {
+            start: [from, 0.0, 0.0],
+            end: [to, 0.0, 0.0],
+        };
         let limits = line_limits(line.direction(), &machine);
         PathBlock {
             line: 1,
@@ -219,13 +245,17 @@ mod tests {
     #[test]
     fn speeds_chain_and_stop_at_end() {
         for kind in ProfileKind::ALL {
-            let blocks: Vec<_> =
-                (0..50).map(|i| line_block(i as f64 * 1e-3, (i + 1) as f64 * 1e-3, 0.05, 1.0)).collect();
+            let blocks: Vec<_> = (0..50)
+                .map(|i| line_block(i as f64 * 1e-3, (i + 1) as f64 * 1e-3, 0.05, 1.0))
+                .collect();
             for window in [2, 7, 256] {
                 let planned = plan_all(kind, &blocks, window);
                 assert_eq!(planned.len(), 50);
                 assert_eq!(planned[0].v_in, 0.0);
-                assert!(planned.last().unwrap().v_out.abs() < 1e-9, "{kind:?} must stop at the end");
+                assert!(
+                    planned.last().unwrap().v_out.abs() < 1e-9,
+                    "{kind:?} must stop at the end"
+                );
                 for w in planned.windows(2) {
                     assert_eq!(w[0].v_out, w[1].v_in);
                 }
@@ -239,7 +269,9 @@ mod tests {
 
     #[test]
     fn junction_limit_is_respected() {
-        let mut blocks: Vec<_> = (0..4).map(|i| line_block(i as f64 * 0.01, (i + 1) as f64 * 0.01, 0.1, 1.0)).collect();
+        let mut blocks: Vec<_> = (0..4)
+            .map(|i| line_block(i as f64 * 0.01, (i + 1) as f64 * 0.01, 0.1, 1.0))
+            .collect();
         blocks[1].v_end_max = 0.0;
         let planned = plan_all(ProfileKind::Scurve7, &blocks, 256);
         assert_eq!(planned[1].v_out, 0.0);

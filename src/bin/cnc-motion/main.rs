@@ -10,7 +10,11 @@ mod run;
 const MM: f64 = 1e-3;
 
 #[derive(Parser)]
-#[command(name = "cnc-motion", version, about = "CNC motion controller: G-code to jerk-limited axis motion")]
+#[command(
+    name = "cnc-motion",
+    version,
+    about = "CNC motion controller: G-code to jerk-limited axis motion"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -96,7 +96,12 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         None
     };
 
-    let (mut v, mut a, mut j, mut fe) = (Peaks::default(), Peaks::default(), Peaks::default(), Peaks::default());
+    let (mut v, mut a, mut j, mut fe) = (
+        Peaks::default(),
+        Peaks::default(),
+        Peaks::default(),
+        Peaks::default(),
+    );
     let mut max_contour: f64 = 0.0;
     let mut n: u64 = 0;
     while !engine.finished() && engine.time() < args.max_time {
@@ -109,7 +114,11 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         max_contour = max_contour.max(engine.contour_error());
         if let Some((path, w)) = csv.as_mut() {
             let p = tick.p.map(|x| x / MM);
-            let (tv, ta, tj) = (tick.v.map(|x| x / MM), tick.a.map(|x| x / MM), tick.j.map(|x| x / MM));
+            let (tv, ta, tj) = (
+                tick.v.map(|x| x / MM),
+                tick.a.map(|x| x / MM),
+                tick.j.map(|x| x / MM),
+            );
             let act = axes.map(|s| s.position / MM);
             writeln!(
                 w,
@@ -137,7 +146,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         }
         n += 1;
         if let Some(bar) = &bar {
-            if n % 1000 == 0 {
+            if n.is_multiple_of(1000) {
                 bar.set_position(tick.line as u64);
                 bar.set_message(format!("t = {:.3} s", tick.t));
             }
@@ -178,7 +187,10 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     if args.json {
         println!("{summary}");
     } else {
-        let map = summary.as_object().map(|m| m.iter().collect::<Vec<_>>()).unwrap_or_default();
+        let map = summary
+            .as_object()
+            .map(|m| m.iter().collect::<Vec<_>>())
+            .unwrap_or_default();
         for (key, value) in map {
             println!("{key:32} {value}");
         }
