@@ -1,10 +1,63 @@
-//! PLACEHOLDER benchmark (plan): replaced by the module's real benchmark.
-use criterion::{criterion_group, criterion_main, Criterion};
+//! Planning throughput: blocks per second of reader → path → look-ahead plan for a 100 000-segment
+//! micro-segment program (0.05–0.2 mm segments on a wavy curve, as CAM output for free-form parts).
+use cnc_motion::config::Machine;
+use cnc_motion::gcode::Reader;
+use cnc_motion::path::PathBuilder;
+use cnc_motion::plan::{Planned, Planner};
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use std::collections::VecDeque;
+use std::fmt::Write;
+use std::sync::Arc;
+
+pub fn micro_segments(n: usize) -> String {
+    let mut text = String::with_capacity(n * 32);
+    text.push_str("G21 G90 G64 F3000\n");
+    let (mut x, mut y) = (0.0f64, 0.0f64);
+    for i in 0..n {
+        let step = 0.05 + 0.15 * ((i as f64 * 0.37).sin() * 0.5 + 0.5);
+        let heading = 0.6 * (i as f64 * 0.01).sin();
+        x += step * heading.cos();
+        y += step * heading.sin();
+        writeln!(text, "G1 X{x:.4} Y{y:.4}").unwrap();
+    }
+    text.push_str("M30\n");
+    text
+}
+
+fn plan_program(text: &Arc<str>, machine: &Machine) -> usize {
+    let mut reader = Reader::new(text.clone(), "bench.ngc", [0.0; 3]);
+    let mut builder = PathBuilder::new(machine);
+    let mut planner = Planner::new(machine.profile, machine.lookahead_blocks);
+    let mut segments = Vec::new();
+    let mut queue: VecDeque<Planned> = VecDeque::new();
+    let mut planned = 0;
+    while let Some(block) = reader.next_block().expect("valid program") {
+        builder.push(&block, &mut segments);
+        for s in segments.drain(..) {
+            planner.push(s, &mut queue);
+        }
+        planned += queue.len();
+        queue.clear();
+    }
+    builder.finish(&mut segments);
+    for s in segments.drain(..) {
+        planner.push(s, &mut queue);
+    }
+    planner.finish(&mut queue);
+    planned + queue.len()
+}
 
 fn bench(c: &mut Criterion) {
-    c.bench_function("plan/placeholder", |b| {
-        b.iter(|| std::hint::black_box(1.0f64).sqrt())
+    let n = 100_000;
+    let text: Arc<str> = Arc::from(micro_segments(n));
+    let machine = Machine::default();
+    let mut g = c.benchmark_group("plan");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(n as u64));
+    g.bench_function("micro_segments_100k", |b| {
+        b.iter(|| plan_program(&text, &machine))
     });
+    g.finish();
 }
 
 criterion_group!(benches, bench);
