@@ -1,0 +1,206 @@
+//! Properties of the whole motion core (reader → path → plan → feed → interp) on random programs:
+//! every interpolated axis velocity, acceleration and jerk within its limit (analytic values and
+//! finite differences of the emitted positions), end point exact, path length conserved.
+
+use cnc_motion::config::Machine;
+use cnc_motion::engine::Engine;
+use cnc_motion::feed::ProfileKind;
+use proptest::prelude::*;
+use std::fmt::Write;
+use std::sync::Arc;
+
+/// Relative slack on analytic values (rounding only).
+const REL: f64 = 1e-9;
+
+struct Run {
+    p: Vec<[f64; 3]>,
+    v: Vec<[f64; 3]>,
+    a: Vec<[f64; 3]>,
+    j: Vec<[f64; 3]>,
+    distance: f64,
+    end: [f64; 3],
+}
+
+fn run(program: &str, machine: &Machine) -> Run {
+    let mut e = Engine::new(Arc::from(program), "prop.ngc", machine).expect("valid program");
+    let mut r = Run {
+        p: vec![e.tick().p],
+        v: vec![],
+        a: vec![],
+        j: vec![],
+        distance: 0.0,
+        end: [0.0; 3],
+    };
+    let mut n = 0;
+    while !e.finished() {
+        let t = *e.step().expect("no runtime error");
+        r.p.push(t.p);
+        r.v.push(t.v);
+        r.a.push(t.a);
+        r.j.push(t.j);
+        n += 1;
+        assert!(n < 5_000_000, "program does not finish");
+    }
+    r.distance = e.tick().distance;
+    r.end = e.tick().p;
+    r
+}
+
+/// A program of G1 moves through the given points (mm) at the given feeds (mm/min).
+fn line_program(points: &[[f64; 3]], feeds: &[f64], exact_stop: bool) -> (String, f64, [f64; 3]) {
+    let mut text = String::from("G21 G90 G17\n");
+    text.push_str(if exact_stop { "G61\n" } else { "G64\n" });
+    let mut from = [0.0; 3];
+    let mut length = 0.0;
+    for (p, f) in points.iter().zip(feeds) {
+        writeln!(text, "G1 X{:.4} Y{:.4} Z{:.4} F{:.1}", p[0], p[1], p[2], f).unwrap();
+        // The program's own rounding of the coordinates is what the machine must follow.
+        let q = p.map(|x| format!("{x:.4}").parse::<f64>().unwrap());
+        length += ((q[0] - from[0]).powi(2) + (q[1] - from[1]).powi(2) + (q[2] - from[2]).powi(2)).sqrt();
+        from = q;
+    }
+    text.push_str("M30\n");
+    (text, length * 1e-3, from.map(|x| x * 1e-3))
+}
+
+fn check_limits(r: &Run, machine: &Machine, check_jerk: bool) {
+    let t = machine.interpolation_period;
+    for i in 0..3 {
+        let lim = &machine.axes[i];
+        for k in 0..r.v.len() {
+            assert!(
+                r.v[k][i].abs() <= lim.max_velocity * (1.0 + REL),
+                "v[{k}][{i}] = {}",
+                r.v[k][i]
+            );
+            assert!(
+                r.a[k][i].abs() <= lim.max_acceleration * (1.0 + REL),
+                "a[{k}][{i}] = {}",
+                r.a[k][i]
+            );
+            if check_jerk {
+                assert!(
+                    r.j[k][i].abs() <= lim.max_jerk * (1.0 + REL),
+                    "j[{k}][{i}] = {}",
+                    r.j[k][i]
+                );
+            }
+        }
+        // Finite differences are averages of the derivative over the window (B-spline weights),
+        // so they obey the same bounds; the slack covers the rounding of positions (~1e-17 m).
+        let p: Vec<f64> = r.p.iter().map(|q| q[i]).collect();
+        for k in 1..p.len() {
+            let v = (p[k] - p[k - 1]) / t;
+            assert!(v.abs() <= lim.max_velocity * (1.0 + 1e-6) + 1e-9, "fd v = {v}");
+        }
+        for k in 2..p.len() {
+            let a = (p[k] - 2.0 * p[k - 1] + p[k - 2]) / (t * t);
+            assert!(
+                a.abs() <= lim.max_acceleration * (1.0 + 1e-6) + 1e-6,
+                "fd a = {a} at {k}"
+            );
+        }
+        if check_jerk {
+            for k in 3..p.len() {
+                let j = (p[k] - 3.0 * p[k - 1] + 3.0 * p[k - 2] - p[k - 3]) / (t * t * t);
+                assert!(j.abs() <= lim.max_jerk * (1.0 + 1e-6) + 1e-2, "fd j = {j} at {k}");
+            }
+        }
+    }
+}
+
+fn point() -> impl Strategy<Value = [f64; 3]> {
+    [-50.0..50.0f64, -50.0..50.0f64, -20.0..20.0f64]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_line_programs_stay_within_limits(
+        points in prop::collection::vec(point(), 1..8),
+        feeds in prop::collection::vec(300.0..8000.0f64, 8),
+        exact_stop in any::<bool>(),
+        kind in prop::sample::select(vec![ProfileKind::Scurve7, ProfileKind::Trapezoid]),
+    ) {
+        let machine = Machine { profile: kind, ..Machine::default() };
+        let (text, length, end) = line_program(&points, &feeds, exact_stop);
+        let r = run(&text, &machine);
+        for i in 0..3 {
+            prop_assert!((r.end[i] - end[i]).abs() <= 1e-12, "end {:?} vs {:?}", r.end, end);
+        }
+        if exact_stop {
+            // Nothing is cut at corners: the distance travelled is the programmed length.
+            prop_assert!((r.distance - length).abs() <= 1e-9 * length.max(1.0));
+        } else {
+            prop_assert!(r.distance <= length * (1.0 + 1e-12) + 1e-12);
+        }
+        check_limits(&r, &machine, kind != ProfileKind::Trapezoid);
+    }
+}
+
+#[test]
+fn override_and_hold_change_speed_smoothly_and_resume() {
+    let machine = Machine::default();
+    let text = "G21 G90\nG1 X500 F6000\nM30\n";
+    let mut e = Engine::new(Arc::from(text), "hold.ngc", &machine).unwrap();
+    for _ in 0..1500 {
+        e.step().unwrap();
+    }
+    let cruise = e.tick().feed;
+    assert!(
+        (cruise - 0.1).abs() < 1e-12,
+        "cruising at the programmed feed, got {cruise}"
+    );
+    e.set_feed_hold(true);
+    let mut last = e.tick().p[0];
+    let mut stopped = false;
+    for _ in 0..2000 {
+        e.step().unwrap();
+        assert!(e.tick().p[0] >= last, "never moves backwards");
+        last = e.tick().p[0];
+        if e.tick().feed == 0.0 {
+            stopped = true;
+            break;
+        }
+    }
+    assert!(stopped, "hold stops");
+    let held = e.tick().p[0];
+    for _ in 0..100 {
+        e.step().unwrap();
+    }
+    assert_eq!(e.tick().p[0], held, "stays on the path while held");
+    e.set_feed_hold(false);
+    e.set_feed_override(0.5);
+    for _ in 0..2000 {
+        e.step().unwrap();
+    }
+    assert!(
+        (e.tick().feed - 0.05).abs() < 1e-9,
+        "50 % override, got {}",
+        e.tick().feed
+    );
+    while !e.finished() {
+        e.step().unwrap();
+    }
+    assert_eq!(e.tick().p, [0.5, 0.0, 0.0]);
+}
+
+#[test]
+fn state_round_trip_is_bit_identical() {
+    let machine = Machine::default();
+    let text = "G21 G90 G64\nG1 X10 Y5 F3000\nG1 X20 Y0\nG1 X25 Y10 Z-2\nM30\n";
+    let mut a = Engine::new(Arc::from(text), "s.ngc", &machine).unwrap();
+    for _ in 0..137 {
+        a.step().unwrap();
+    }
+    let saved = a.save_state();
+    let mut b = Engine::new(Arc::from(text), "s.ngc", &machine).unwrap();
+    b.restore_state(&saved).unwrap();
+    while !a.finished() {
+        a.step().unwrap();
+        b.step().unwrap();
+        assert_eq!(a.tick(), b.tick());
+    }
+    assert!(b.restore_state(&saved[..3]).is_err());
+}
