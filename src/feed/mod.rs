@@ -104,6 +104,8 @@ pub trait FeedLaw {
 }
 
 /// One block's profile, whatever the law: a plain record, evaluated in closed form.
+// Kept inline (no Box): one allocation per planned block would cost more than the bytes.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Profile {
     Scurve7(scurve7::Scurve7),

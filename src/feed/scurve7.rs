@@ -163,7 +163,14 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
         v_peak = v_top;
         cruise = length - ramp_distance(v_in, v_peak, lim) - ramp_distance(v_peak, v_out, lim);
         if cruise < 0.0 {
-            v_peak = peak_speed(length, v_in, v_out, v_top, lim);
+            let direct = ramp_distance(v_in, v_out, lim);
+            // When one ramp v_in → v_out already fills L (the planner's max_exit/max_entry speeds),
+            // a peak a few ulps above would add two ramps of sqrt(ulp/J) seconds: take none.
+            v_peak = if direct >= length * (1.0 - 1e-12) {
+                v_in.max(v_out)
+            } else {
+                peak_speed(length, v_in, v_out, v_top, lim)
+            };
             cruise = 0.0;
         }
     }
