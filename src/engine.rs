@@ -15,6 +15,9 @@ use std::sync::Arc;
 
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
 const STATE_VERSION: u32 = 1;
+/// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
+const READ_AHEAD_PER_TICK: usize = 4;
+const QUEUE_TARGET: usize = 8;
 
 /// Feed-override tracker: the time-scaling factor k = dσ/dt (σ the planned path time) follows
 /// its target with bounded k̇ and k̈, so an override or a hold changes the speed jerk-limited:
@@ -121,7 +124,7 @@ impl Engine {
         let start = [0.0; 3];
         let interp = Interpolator::new(start);
         let tick = interp.sample(0.0, false);
-        Ok(Engine {
+        let mut engine = Engine {
             machine: machine.clone(),
             reader: Reader::new(program.clone(), file, start),
             program,
@@ -141,7 +144,10 @@ impl Engine {
             load_force: [0.0; 3],
             motion_blocks: 0,
             finish_time: None,
-        })
+        };
+        // Read ahead before the first tick, as an NC does before cycle start.
+        engine.refill()?;
+        Ok(engine)
     }
 
     /// Switch the servo-axis model on (the FMU always does; the CLI with `--servo`).
@@ -263,6 +269,13 @@ impl Engine {
             self.feed_override.min(1.0)
         };
         let mut dt = self.scale.step(target, period);
+        // Keep a few planned segments ahead, reading at most a few blocks per tick, so that no
+        // single tick pays for a whole look-ahead window.
+        for _ in 0..READ_AHEAD_PER_TICK {
+            if self.queue.len() >= QUEUE_TARGET || !self.pull()? {
+                break;
+            }
+        }
         loop {
             dt = self.interp.advance(dt, &mut self.queue);
             if dt <= 0.0 || !self.refill()? {
@@ -296,7 +309,21 @@ impl Engine {
     /// Read, build and plan until a planned segment is queued or the program ends.
     /// Returns whether the queue holds a segment.
     fn refill(&mut self) -> Result<bool, ProgramError> {
-        while self.queue.is_empty() && !self.program_done {
+        while self.queue.is_empty() {
+            if !self.pull()? {
+                break;
+            }
+        }
+        Ok(!self.queue.is_empty())
+    }
+
+    /// Read one block (or, after the program end, release one planned segment).
+    /// Returns false when nothing more will come.
+    fn pull(&mut self) -> Result<bool, ProgramError> {
+        if self.program_done {
+            return Ok(self.planner.emit_one(&mut self.queue));
+        }
+        {
             match self.reader.next_block()? {
                 Some(block) => {
                     if matches!(
@@ -315,11 +342,8 @@ impl Engine {
             for segment in self.segments.drain(..) {
                 self.planner.push(segment, &mut self.queue);
             }
-            if self.program_done {
-                self.planner.finish(&mut self.queue);
-            }
         }
-        Ok(!self.queue.is_empty())
+        Ok(true)
     }
 
     /// Serialize the whole state (not the program text) for fmi2GetFMUstate / serialization.

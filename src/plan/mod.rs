@@ -36,6 +36,8 @@ struct Entry {
     v_in_cap: f64,
     /// Entry limit from the backward pass (NaN until computed).
     v_in_lim: f64,
+    /// Largest entry speed from which the segment can stop within its length (fixed, cached).
+    v_in_stop: f64,
 }
 
 /// The bounded look-ahead window.
@@ -91,17 +93,34 @@ impl Planner {
         } else {
             block.v_end_max.min(block.v_feed)
         };
+        let v_in_stop = if dwell || block.constant_speed {
+            0.0
+        } else {
+            feed::max_entry(self.kind, block.segment.length(), 0.0, &block.limits)
+        };
         self.window.push_back(Entry {
             block,
             v_in_cap,
             v_in_lim: f64::NAN,
+            v_in_stop,
         });
+        // A full window releases one segment per segment taken, so the work per block stays
+        // bounded (no burst of half a window in one interpolation tick).
         if self.window.len() >= self.capacity {
             self.backward();
-            for _ in 0..self.capacity / 2 {
-                self.emit_front(out);
-            }
+            self.emit_front(out);
         }
+    }
+
+    /// After the program's last segment: plan and emit the front segment of the window (a stop
+    /// at the window's end is then the real program end). Returns false when the window is empty.
+    pub fn emit_one(&mut self, out: &mut VecDeque<Planned>) -> bool {
+        if self.window.is_empty() {
+            return false;
+        }
+        self.backward();
+        self.emit_front(out);
+        true
     }
 
     /// End of program: plan everything left, stopping at the end.
@@ -143,8 +162,7 @@ impl Planner {
         let length = e.block.segment.length();
         let lim = &e.block.limits;
         let slow_to_next = feed::max_entry(self.kind, length, v_exit, lim);
-        let stop = feed::max_entry(self.kind, length, 0.0, lim);
-        cap.min(slow_to_next.max(stop))
+        cap.min(slow_to_next.max(e.v_in_stop))
     }
 
     /// Forward pass for the front segment: decide its exit, plan its profile, emit it.
