@@ -37,3 +37,11 @@ def test_run_pessoles_summary(cli):
         assert abs(out["end_position_mm"][i] - want[axis]) < 1e-9
     for i in range(3):
         assert out["max_axis_acceleration_mm_s2"][i] <= 9800 * (1 + 1e-9)
+
+
+def test_bad_program_exit_2_with_location(cli, tmp_path):
+    prog = tmp_path / "bad.ngc"
+    prog.write_text("G21 G90\nG1 X1 F100\nG41 D1 X2\n")
+    res = run(cli, "run", str(prog))
+    assert res.returncode == 2
+    assert res.stderr.strip() == f"{prog}:3:1: unsupported G41 (cutter radius compensation)"

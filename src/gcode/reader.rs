@@ -1,0 +1,527 @@
+//! The streaming reader: a cursor into the program text and the modal state, one line at a time.
+
+use super::words::{split, Word};
+use super::{Block, Motion, PathMode, Plane, StopKind};
+use crate::error::ProgramError;
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+/// Arc end points may disagree with the centre by this much (LinuxCNC's tolerances: 0.002 mm
+/// absolute and 0.1 % of the radius; an arc is refused only when it exceeds both).
+const ARC_TOLERANCE_ABS: f64 = 0.002e-3;
+const ARC_TOLERANCE_REL: f64 = 1e-3;
+
+/// Axis indices (a, b, normal) of a plane, right-handed so that G3 is a positive rotation about
+/// the normal: G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
+pub fn plane_axes(plane: Plane) -> (usize, usize, usize) {
+    match plane {
+        Plane::XY => (0, 1, 2),
+        Plane::XZ => (2, 0, 1),
+        Plane::YZ => (1, 2, 0),
+    }
+}
+
+/// Streaming reader. Clone is cheap (the text is shared), so the reader state can be saved.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Reader {
+    #[serde(skip)]
+    text: Arc<str>,
+    file: String,
+    /// Byte offset of the next line to read.
+    offset: usize,
+    /// Number of the next line to read (1-based).
+    line: u32,
+    position: Vec3,
+    /// Programmed feed (m/s).
+    feed: f64,
+    path_mode: PathMode,
+    /// Metres per program unit (G21 mm, G20 inch).
+    unit: f64,
+    /// G90 (true) / G91.
+    absolute: bool,
+    /// G90.1 (true) / G91.1: arc centres absolute or relative to the start point.
+    arc_absolute: bool,
+    plane: Plane,
+    /// Modal motion: 0, 1, 2, 3 (G0…G3), None before the first.
+    motion: Option<u8>,
+    done: bool,
+    /// A block decoded but not yet returned (a line can give a motion and a stop).
+    #[serde(skip)]
+    pending: Option<Block>,
+    #[serde(skip)]
+    words: Vec<Word>,
+}
+
+/// What the G and M words of a line ask for.
+#[derive(Default)]
+struct LineCodes {
+    motion: Option<(u8, u32)>,
+    dwell: Option<u32>,
+    stop: Option<(StopKind, u32)>,
+}
+
+impl Reader {
+    /// `file` is the name used in error messages; the machine starts at `start` (m).
+    pub fn new(text: Arc<str>, file: &str, start: Vec3) -> Reader {
+        Reader {
+            text,
+            file: file.to_string(),
+            offset: 0,
+            line: 1,
+            position: start,
+            feed: 0.0,
+            path_mode: PathMode::Blend {
+                tolerance: None,
+                q: None,
+            },
+            unit: 1e-3,
+            absolute: true,
+            arc_absolute: false,
+            plane: Plane::XY,
+            motion: None,
+            done: false,
+            pending: None,
+            words: Vec::new(),
+        }
+    }
+
+    /// Give back the program text after a state restore (the text is not serialized).
+    pub fn attach_text(&mut self, text: Arc<str>) {
+        self.text = text;
+    }
+
+    /// Number of the next line to read (1-based): progress through the program.
+    pub fn line(&self) -> u32 {
+        self.line
+    }
+
+    fn error(&self, line: u32, col: u32, message: impl Into<String>) -> ProgramError {
+        ProgramError::new(&self.file, line, col, message)
+    }
+
+    /// Next block, `Ok(None)` at the end of the program (or after M2/M30).
+    pub fn next_block(&mut self) -> Result<Option<Block>, ProgramError> {
+        if let Some(b) = self.pending.take() {
+            return Ok(Some(b));
+        }
+        while !self.done && self.offset < self.text.len() {
+            let text = self.text.clone();
+            let rest = &text[self.offset..];
+            let end = rest.find('\n').map_or(rest.len(), |i| i + 1);
+            let raw = &rest[..end];
+            let line = self.line;
+            let mut words = std::mem::take(&mut self.words);
+            let parsed = split(raw, &mut words).map_err(|e| self.error(line, e.col, e.message));
+            let result = parsed.and_then(|()| self.execute(line, &words));
+            self.words = words;
+            // Advance only past a line that was read without error, so a retry reports it again.
+            let block = result?;
+            self.offset += end;
+            self.line += 1;
+            if let Some(b) = block {
+                return Ok(Some(b));
+            }
+            if let Some(b) = self.pending.take() {
+                return Ok(Some(b));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Apply one line's words to the modal state; the block it makes, if any.
+    fn execute(&mut self, line: u32, words: &[Word]) -> Result<Option<Block>, ProgramError> {
+        let codes = self.modal_words(line, words)?;
+        let mut axes: [Option<(f64, u32)>; 3] = [None; 3];
+        let mut ijk: [Option<(f64, u32)>; 3] = [None; 3];
+        let (mut r, mut p) = (None, None);
+        for w in words {
+            let v = w.value;
+            match w.letter {
+                b'X' | b'Y' | b'Z' => {
+                    let i = (w.letter - b'X') as usize;
+                    if axes[i].is_some() {
+                        return Err(self.error(line, w.col, format!("{} given twice", w.letter as char)));
+                    }
+                    axes[i] = Some((v, w.col));
+                }
+                b'I' | b'J' | b'K' => ijk[(w.letter - b'I') as usize] = Some((v, w.col)),
+                b'R' => r = Some((v, w.col)),
+                b'P' => p = Some((v, w.col)),
+                b'F' => {
+                    if v <= 0.0 {
+                        return Err(self.error(line, w.col, format!("feed F{v} must be positive")));
+                    }
+                    // G94: units per minute.
+                    self.feed = v * self.unit / 60.0;
+                }
+                b'G' | b'M' | b'N' | b'S' | b'T' | b'H' | b'D' | b'Q' => {}
+                b'A' | b'B' | b'C' | b'U' | b'V' | b'W' => {
+                    let msg = format!(
+                        "unsupported axis word {} (only X, Y, Z are machine axes)",
+                        w.letter as char
+                    );
+                    return Err(self.error(line, w.col, msg));
+                }
+                other => {
+                    let msg = format!("unsupported word {}", other as char);
+                    return Err(self.error(line, w.col, msg));
+                }
+            }
+        }
+        if let Some(col) = codes.dwell {
+            let Some((seconds, pcol)) = p else {
+                return Err(self.error(line, col, "G4 needs P (dwell time in seconds)"));
+            };
+            if seconds < 0.0 {
+                return Err(self.error(line, pcol, "G4 P must not be negative"));
+            }
+            if axes.iter().any(Option::is_some) {
+                return Err(self.error(line, col, "G4 cannot move axes on the same line"));
+            }
+            let block = self.block(line, Motion::Dwell { seconds });
+            return Ok(Some(self.with_stop(block, &codes)));
+        }
+        let any_axis = axes.iter().any(Option::is_some);
+        let motion = match codes.motion {
+            Some((m, col)) => Some((m, col)),
+            None if any_axis => match self.motion {
+                Some(m) => Some((m, axes.iter().flatten().map(|a| a.1).min().unwrap_or(1))),
+                None => {
+                    let col = axes.iter().flatten().map(|a| a.1).min().unwrap_or(1);
+                    return Err(self.error(line, col, "axis words without a motion mode (G0, G1, G2, G3)"));
+                }
+            },
+            None => None,
+        };
+        let mut block = None;
+        if let Some((m, col)) = motion {
+            self.motion = Some(m);
+            let mut to = self.position;
+            for (i, a) in axes.iter().enumerate() {
+                if let Some((v, _)) = a {
+                    to[i] = if self.absolute {
+                        v * self.unit
+                    } else {
+                        self.position[i] + v * self.unit
+                    };
+                }
+            }
+            if m != 0 && self.feed <= 0.0 && (any_axis || m >= 2) {
+                return Err(self.error(line, col, format!("G{m} with no feed rate: F was never set")));
+            }
+            block = match m {
+                0 | 1 if !any_axis => None,
+                0 => Some(self.block(line, Motion::Rapid { to })),
+                1 => Some(self.block(line, Motion::Linear { to })),
+                _ => Some(self.arc(line, col, m == 2, to, ijk, r, p)?),
+            };
+            if let Some(b) = &block {
+                self.position = match b.motion {
+                    Motion::Rapid { to } | Motion::Linear { to } | Motion::Arc { to, .. } => to,
+                    _ => self.position,
+                };
+            }
+        } else if let Some((_, col)) = ijk.iter().flatten().next().or(r.as_ref()) {
+            return Err(self.error(line, *col, "arc words without G2/G3"));
+        }
+        Ok(match block {
+            Some(b) => Some(self.with_stop(b, &codes)),
+            None => codes.stop.map(|(kind, _)| {
+                self.finish_on(kind);
+                self.block(line, Motion::Stop(kind))
+            }),
+        })
+    }
+
+    /// A line with a motion and M0/M1/M2/M30: the motion first, the stop after it.
+    fn with_stop(&mut self, block: Block, codes: &LineCodes) -> Block {
+        if let Some((kind, _)) = codes.stop {
+            self.pending = Some(self.block(block.line, Motion::Stop(kind)));
+            self.finish_on(kind);
+        }
+        block
+    }
+
+    fn finish_on(&mut self, kind: StopKind) {
+        if kind == StopKind::End {
+            self.done = true;
+        }
+    }
+
+    fn block(&self, line: u32, motion: Motion) -> Block {
+        let feed = match motion {
+            Motion::Rapid { .. } => 0.0,
+            _ => self.feed,
+        };
+        Block {
+            line,
+            from: self.position,
+            motion,
+            feed,
+            path_mode: self.path_mode,
+        }
+    }
+
+    /// G2/G3 in the current plane, centre by I/J/K (relative or absolute) or by R.
+    #[allow(clippy::too_many_arguments)]
+    fn arc(
+        &self,
+        line: u32,
+        col: u32,
+        clockwise: bool,
+        to: Vec3,
+        ijk: [Option<(f64, u32)>; 3],
+        r: Option<(f64, u32)>,
+        p: Option<(f64, u32)>,
+    ) -> Result<Block, ProgramError> {
+        let name = if clockwise { "G2" } else { "G3" };
+        let (a, b, n) = plane_axes(self.plane);
+        let from = self.position;
+        // The centre word not in the plane (K in G17, J in G18, I in G19) is an error.
+        if let Some((_, c)) = ijk[n] {
+            let letter = [b'I', b'J', b'K'][n] as char;
+            return Err(self.error(line, c, format!("{letter} is not a centre word in this plane")));
+        }
+        let turns = match p {
+            None => 0,
+            Some((v, _)) if v >= 1.0 && v.fract() == 0.0 && v < 1e6 => v as u32 - 1,
+            Some((v, pc)) => {
+                return Err(self.error(line, pc, format!("{name} P{v}: turns must be a whole number ≥ 1")));
+            }
+        };
+        let chord_a = to[a] - from[a];
+        let chord_b = to[b] - from[b];
+        let chord = chord_a.hypot(chord_b);
+        let mut center = from;
+        center[n] = 0.0;
+        if ijk[a].is_some() || ijk[b].is_some() {
+            if r.is_some() {
+                return Err(self.error(line, col, format!("{name}: give either I/J/K or R, not both")));
+            }
+            for &i in &[a, b] {
+                let off = ijk[i].map_or(0.0, |(v, _)| v * self.unit);
+                center[i] = if self.arc_absolute { off } else { from[i] + off };
+            }
+            let r1 = (from[a] - center[a]).hypot(from[b] - center[b]);
+            let r2 = (to[a] - center[a]).hypot(to[b] - center[b]);
+            if r1 <= 0.0 {
+                return Err(self.error(
+                    line,
+                    col,
+                    format!("{name}: the centre is the start point (radius zero)"),
+                ));
+            }
+            let miss = (r1 - r2).abs();
+            if miss > ARC_TOLERANCE_ABS && miss > ARC_TOLERANCE_REL * r1 {
+                let msg = format!(
+                    "{name}: end point is {:.4} mm off the circle (radius {:.4} mm at the start, {:.4} mm at the end)",
+                    miss * 1e3,
+                    r1 * 1e3,
+                    r2 * 1e3
+                );
+                return Err(self.error(line, col, msg));
+            }
+            if chord > 0.0 && miss > 0.0 {
+                // Within tolerance: move the centre onto the chord's bisector (by at most the
+                // tolerance), so the arc is an exact circle through both end points.
+                let (ua, ub) = (chord_a / chord, chord_b / chord);
+                let (ma, mb) = (0.5 * (from[a] + to[a]), 0.5 * (from[b] + to[b]));
+                let along = (center[a] - ma) * ua + (center[b] - mb) * ub;
+                center[a] -= along * ua;
+                center[b] -= along * ub;
+            }
+        } else if let Some((rv, rc)) = r {
+            let radius = rv.abs() * self.unit;
+            if chord == 0.0 {
+                return Err(self.error(line, rc, format!("{name}: a full circle needs I/J/K, not R")));
+            }
+            if radius <= 0.0 {
+                return Err(self.error(line, rc, format!("{name}: R must not be zero")));
+            }
+            let half = 0.5 * chord;
+            if half > radius * (1.0 + 1e-12) + ARC_TOLERANCE_ABS {
+                let msg = format!(
+                    "{name}: R{} is smaller than half the chord ({:.4} mm)",
+                    rv,
+                    half / self.unit
+                );
+                return Err(self.error(line, rc, msg));
+            }
+            let h = (radius * radius - half * half).max(0.0).sqrt();
+            // Left normal of the chord; G3 with R > 0 (at most half a circle) has its centre on
+            // the left, G2 on the right; R < 0 asks for the larger arc, centre on the other side.
+            let (la, lb) = (-chord_b / chord, chord_a / chord);
+            let side = if clockwise { -1.0 } else { 1.0 } * if rv < 0.0 { -1.0 } else { 1.0 };
+            center[a] = 0.5 * (from[a] + to[a]) + side * h * la;
+            center[b] = 0.5 * (from[b] + to[b]) + side * h * lb;
+        } else {
+            let words = match self.plane {
+                Plane::XY => "I/J",
+                Plane::XZ => "I/K",
+                Plane::YZ => "J/K",
+            };
+            return Err(self.error(
+                line,
+                col,
+                format!("{name} needs a centre ({words}) or a radius (R)"),
+            ));
+        }
+        Ok(self.block(
+            line,
+            Motion::Arc {
+                to,
+                center,
+                plane: self.plane,
+                clockwise,
+                turns,
+            },
+        ))
+    }
+
+    /// G and M words: modal settings applied at once, motion / dwell / stop returned.
+    fn modal_words(&mut self, line: u32, words: &[Word]) -> Result<LineCodes, ProgramError> {
+        let mut codes = LineCodes::default();
+        // Modal groups seen on this line, to refuse two words of one group.
+        let mut groups: [Option<u32>; 8] = [None; 8];
+        let mut group = |g: usize, col: u32, this: &Reader| -> Result<(), ProgramError> {
+            if groups[g].is_some() {
+                return Err(this.error(line, col, "two words of the same modal group on one line"));
+            }
+            groups[g] = Some(col);
+            Ok(())
+        };
+        let (mut tolerance, mut q) = (None, None);
+        for w in words {
+            if w.letter == b'P' {
+                tolerance = Some(w.value);
+            }
+            if w.letter == b'Q' {
+                q = Some(w.value);
+            }
+        }
+        for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
+            // Codes with one decimal (G90.1); compare in tenths.
+            let code = (w.value * 10.0).round() as i64;
+            if ((w.value * 10.0) - code as f64).abs() > 1e-6 {
+                return Err(self.error(
+                    line,
+                    w.col,
+                    format!("unsupported {}{}", w.letter as char, w.value),
+                ));
+            }
+            let col = w.col;
+            if w.letter == b'M' {
+                match code {
+                    0 | 10 => {
+                        group(7, col, self)?;
+                        let kind = if code == 0 {
+                            StopKind::Pause
+                        } else {
+                            StopKind::OptionalPause
+                        };
+                        codes.stop = Some((kind, col));
+                    }
+                    20 | 300 => {
+                        group(7, col, self)?;
+                        codes.stop = Some((StopKind::End, col));
+                    }
+                    // Spindle, tool change, coolant, override switches: no motion.
+                    30 | 40 | 50 | 60 | 70 | 80 | 90 | 480 | 490 => {}
+                    _ => return Err(self.error(line, col, format!("unsupported M{}", fmt_code(code)))),
+                }
+                continue;
+            }
+            match code {
+                0 | 10 | 20 | 30 => {
+                    group(0, col, self)?;
+                    codes.motion = Some(((code / 10) as u8, col));
+                }
+                40 => {
+                    group(0, col, self)?;
+                    codes.dwell = Some(col);
+                }
+                170 | 180 | 190 => {
+                    group(1, col, self)?;
+                    self.plane = match code {
+                        170 => Plane::XY,
+                        180 => Plane::XZ,
+                        _ => Plane::YZ,
+                    };
+                }
+                200 | 210 => {
+                    group(2, col, self)?;
+                    self.unit = if code == 200 { 25.4e-3 } else { 1e-3 };
+                }
+                900 | 910 => {
+                    group(3, col, self)?;
+                    self.absolute = code == 900;
+                }
+                901 | 911 => {
+                    group(4, col, self)?;
+                    self.arc_absolute = code == 901;
+                }
+                610 | 611 => {
+                    group(5, col, self)?;
+                    self.path_mode = PathMode::ExactStop;
+                }
+                640 => {
+                    group(5, col, self)?;
+                    let tol = tolerance.map(|v| v * self.unit);
+                    if let Some(t) = tol {
+                        if t < 0.0 {
+                            return Err(self.error(line, col, "G64 P must not be negative"));
+                        }
+                    }
+                    self.path_mode = PathMode::Blend {
+                        tolerance: tol,
+                        q: q.map(|v| v * self.unit),
+                    };
+                }
+                // Accepted, no effect on motion: cancel compensation / offsets / cycles, feed per
+                // minute, work offsets, spindle modes, canned-cycle return levels.
+                400 | 490 | 800 | 940 | 960 | 970 | 980 | 990 | 540 | 550 | 560 | 570 | 580 | 590 | 591
+                | 592 | 593 => {}
+                _ => {
+                    let what = match code {
+                        410 | 411 | 420 | 421 => " (cutter radius compensation)",
+                        430..=432 => " (tool length offset)",
+                        330 | 331 | 760 => " (spindle-synchronised motion)",
+                        50..=53 => " (splines)",
+                        100 => " (data setting)",
+                        280 | 281 | 300 | 301 | 530 | 920 | 921 | 922 | 923 => {
+                            " (coordinate system and homing)"
+                        }
+                        380..=389 => " (probing)",
+                        730 | 810..=890 => " (canned cycles)",
+                        930 => " (inverse-time feed)",
+                        950 => " (feed per revolution)",
+                        70 | 80 => " (lathe diameter mode)",
+                        _ => "",
+                    };
+                    return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
+                }
+            }
+        }
+        Ok(codes)
+    }
+}
+
+/// A code in tenths as written: 410 → "41", 901 → "90.1".
+fn fmt_code(tenths: i64) -> String {
+    if tenths % 10 == 0 {
+        format!("{}", tenths / 10)
+    } else {
+        format!("{}.{}", tenths / 10, (tenths % 10).abs())
+    }
+}
+
+/// Read the whole program once, keeping nothing, to report the first error before motion starts.
+pub fn validate(text: Arc<str>, file: &str) -> Result<u64, ProgramError> {
+    let mut reader = Reader::new(text, file, [0.0; 3]);
+    let mut blocks = 0;
+    while reader.next_block()?.is_some() {
+        blocks += 1;
+    }
+    Ok(blocks)
+}

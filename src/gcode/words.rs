@@ -1,0 +1,184 @@
+//! One line of G-code → its words (letter, number, column). Comments `( )` and `;`, spaces inside
+//! numbers (as LinuxCNC allows), and the constructs we do not run (`#` parameters, `[ ]`
+//! expressions, O-words) reported with their column.
+
+/// A word: upper-case letter, its value, and the 1-based column of the letter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Word {
+    pub letter: u8,
+    pub value: f64,
+    pub col: u32,
+}
+
+/// Error at a column of the line.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LexError {
+    pub col: u32,
+    pub message: String,
+}
+
+fn err(col: usize, message: impl Into<String>) -> LexError {
+    LexError {
+        col: col as u32 + 1,
+        message: message.into(),
+    }
+}
+
+/// Split a line into words, appending to `out` (cleared first). A `%` line has no words.
+pub fn split(line: &str, out: &mut Vec<Word>) -> Result<(), LexError> {
+    out.clear();
+    let b = line.as_bytes();
+    if line.trim_start().starts_with('%') {
+        return Ok(());
+    }
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        match c {
+            b' ' | b'\t' | b'\r' | b'\n' => i += 1,
+            b'(' => match b[i..].iter().position(|&x| x == b')') {
+                Some(k) => i += k + 1,
+                None => return Err(err(i, "comment not closed: '(' without ')'")),
+            },
+            b';' => break,
+            b'/' if out.is_empty() => {
+                return Err(err(i, "unsupported block delete '/'"));
+            }
+            b'#' => return Err(err(i, "unsupported # parameter (variables are not supported)")),
+            b'[' => {
+                return Err(err(
+                    i,
+                    "unsupported expression '[' (expressions are not supported)",
+                ))
+            }
+            b'o' | b'O' => return Err(err(i, "unsupported O-word (subroutines and control flow)")),
+            c if c.is_ascii_alphabetic() => {
+                let col = i;
+                i += 1;
+                let k = i + b[i..].iter().take_while(|&&x| x == b' ' || x == b'\t').count();
+                match b.get(k) {
+                    Some(b'#') => {
+                        return Err(err(k, "unsupported # parameter (variables are not supported)"))
+                    }
+                    Some(b'[') => {
+                        return Err(err(
+                            k,
+                            "unsupported expression '[' (expressions are not supported)",
+                        ))
+                    }
+                    _ => {}
+                }
+                let (value, next) = number(b, i).map_err(|m| err(col, format!("{}: {m}", c as char)))?;
+                i = next;
+                out.push(Word {
+                    letter: c.to_ascii_uppercase(),
+                    value,
+                    col: col as u32 + 1,
+                });
+            }
+            _ => return Err(err(i, format!("unexpected character '{}'", printable(line, i)))),
+        }
+    }
+    Ok(())
+}
+
+fn printable(line: &str, i: usize) -> String {
+    line[i..]
+        .chars()
+        .next()
+        .map_or_else(String::new, |c| c.to_string())
+}
+
+/// A real number starting at `i` (spaces allowed anywhere inside, as LinuxCNC does):
+/// optional sign, digits, optional point and digits; at least one digit.
+fn number(b: &[u8], mut i: usize) -> Result<(f64, usize), String> {
+    let mut text = String::with_capacity(16);
+    let skip = |i: &mut usize| {
+        while *i < b.len() && (b[*i] == b' ' || b[*i] == b'\t') {
+            *i += 1;
+        }
+    };
+    skip(&mut i);
+    if i < b.len() && (b[i] == b'+' || b[i] == b'-') {
+        text.push(b[i] as char);
+        i += 1;
+        skip(&mut i);
+    }
+    let mut digits = 0;
+    let mut point = false;
+    while i < b.len() {
+        match b[i] {
+            c @ b'0'..=b'9' => {
+                text.push(c as char);
+                digits += 1;
+            }
+            b'.' if !point => {
+                text.push('.');
+                point = true;
+            }
+            b' ' | b'\t' => {
+                // A space inside a number is skipped only if the number goes on after it.
+                let mut k = i;
+                skip(&mut k);
+                if k < b.len() && (b[k].is_ascii_digit() || (b[k] == b'.' && !point)) {
+                    i = k;
+                    continue;
+                }
+                break;
+            }
+            _ => break,
+        }
+        i += 1;
+    }
+    if digits == 0 {
+        return Err("a number is missing".into());
+    }
+    text.parse::<f64>()
+        .map(|v| (v, i))
+        .map_err(|e| format!("bad number '{text}': {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn words(line: &str) -> Vec<(char, f64, u32)> {
+        let mut out = Vec::new();
+        split(line, &mut out).unwrap();
+        out.iter().map(|w| (w.letter as char, w.value, w.col)).collect()
+    }
+
+    #[test]
+    fn numbers_comments_and_columns() {
+        assert_eq!(
+            words("N10 g1 X1. Y.5 Z-0.5 (comment) F+2 ; rest"),
+            vec![
+                ('N', 10.0, 1),
+                ('G', 1.0, 5),
+                ('X', 1.0, 8),
+                ('Y', 0.5, 12),
+                ('Z', -0.5, 16),
+                ('F', 2.0, 32)
+            ]
+        );
+        assert_eq!(words("X 1 . 5 Y2"), vec![('X', 1.5, 1), ('Y', 2.0, 9)]);
+        assert_eq!(
+            words("G90.1 G64 P0.01"),
+            vec![('G', 90.1, 1), ('G', 64.0, 7), ('P', 0.01, 11)]
+        );
+        assert!(words("%").is_empty());
+    }
+
+    #[test]
+    fn errors_name_the_column() {
+        let mut out = Vec::new();
+        let e = split("G1 X#1", &mut out).unwrap_err();
+        assert_eq!(e.col, 5);
+        let e = split("G1 X", &mut out).unwrap_err();
+        assert_eq!((e.col, e.message.as_str()), (4, "X: a number is missing"));
+        let e = split("G1 (open", &mut out).unwrap_err();
+        assert_eq!(e.col, 4);
+        let e = split("O100 sub", &mut out).unwrap_err();
+        assert_eq!(e.col, 1);
+    }
+}
