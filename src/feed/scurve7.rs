@@ -88,35 +88,65 @@ pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
     max_speed_after(length, v_in, lim)
 }
 
+/// Distance of the ramp v1 → vp (vp ≥ v1) and its derivative in vp: long ramps (A reached)
+/// D = (v1 + vp)/2 · (Δv/A + A/J), short ones D = (v1 + vp)·τ_j with τ_j = sqrt(Δv/J).
+fn ramp_distance_slope(v1: f64, vp: f64, lim: &Limits) -> (f64, f64) {
+    let (a, j) = (lim.a_max, lim.j_max);
+    let dv = (vp - v1).max(0.0);
+    if dv >= a * a / j {
+        let t = dv / a + a / j;
+        (0.5 * (v1 + vp) * t, 0.5 * t + 0.5 * (v1 + vp) / a)
+    } else {
+        let tj = (dv / j).sqrt();
+        let slope = if tj > 0.0 {
+            tj + (v1 + vp) / (2.0 * j * tj)
+        } else {
+            f64::INFINITY
+        };
+        ((v1 + vp) * tj, slope)
+    }
+}
+
 /// Peak speed v_p ≥ max(v_in, v_out) with ramp(v_in, v_p) + ramp(v_p, v_out) = L, when the
-/// cruise does not fit. Both distances rise with v_p, so the root is unique: safeguarded Newton
-/// inside a shrinking bracket, bounded iterations.
+/// cruise does not fit. Both distances rise with v_p, so the root is unique. When both ramps
+/// reach A it is the root of a quadratic, v_p²/A + v_p·A/J + c = 0; otherwise that root starts a
+/// Newton iteration with the analytic slope, kept inside a shrinking bracket (bounded steps).
 fn peak_speed(length: f64, v_in: f64, v_out: f64, v_hi: f64, lim: &Limits) -> f64 {
-    let f = |v: f64| ramp_distance(v_in, v, lim) + ramp_distance(v, v_out, lim) - length;
+    let (a, j) = (lim.a_max, lim.j_max);
     let mut lo = v_in.max(v_out);
     let mut hi = v_hi;
-    // Start from the larger single-ramp bound, which is within a factor of the root.
-    let mut v = 0.5 * (lo + hi);
-    for _ in 0..64 {
-        let fv = f(v);
-        if fv > 0.0 {
+    let c = -(v_in * v_in + v_out * v_out) / (2.0 * a) + (v_in + v_out) * a / (2.0 * j) - length;
+    let (qa, qb) = (1.0 / a, a / j);
+    let mut v = (-qb + (qb * qb - 4.0 * qa * c).max(0.0).sqrt()) / (2.0 * qa);
+    let dv_a = a * a / j;
+    if v - v_in >= dv_a && v - v_out >= dv_a && v > lo && v < hi {
+        return v;
+    }
+    if !(v > lo && v < hi) {
+        v = 0.5 * (lo + hi);
+    }
+    for _ in 0..60 {
+        let (d1, s1) = ramp_distance_slope(v_in, v, lim);
+        let (d2, s2) = ramp_distance_slope(v_out, v, lim);
+        let f = d1 + d2 - length;
+        if f > 0.0 {
             hi = v;
         } else {
             lo = v;
         }
-        if hi - lo <= 1e-15 * hi.max(1e-300) {
-            break;
-        }
-        let h = 1e-7 * v.max(1e-12);
-        let slope = (f(v + h) - fv) / h;
-        let newton = v - fv / slope;
-        v = if slope > 0.0 && newton > lo && newton < hi {
+        let newton = v - f / (s1 + s2);
+        let next = if newton > lo && newton < hi {
             newton
         } else {
             0.5 * (lo + hi)
         };
+        if (next - v).abs() <= 4.0 * f64::EPSILON * v || hi - lo <= 4.0 * f64::EPSILON * hi {
+            v = next;
+            break;
+        }
+        v = next;
     }
-    lo.max(v.min(hi))
+    v.clamp(v_in.max(v_out), v_hi)
 }
 
 /// Jerks and durations of a ramp v1 → v2 (3 phases).
