@@ -198,7 +198,9 @@ impl FeedLaw for Jerk15 {
         self.v_end
     }
     fn at(&self, t: f64) -> Kin {
-        let t = t.clamp(0.0, self.duration());
+        let total = self.duration();
+        let t = t.clamp(0.0, total);
+        let t_end = t >= total;
         let t_up = self.up.duration();
         if t < t_up {
             return self.up.at(self.v_in, t);
@@ -213,7 +215,9 @@ impl FeedLaw for Jerk15 {
                 j: 0.0,
             };
         }
-        let k = self.down.at(self.v_peak, t - self.t_cruise);
+        // At the very end take the ramp's own duration, so that a = 0 exactly despite rounding of t.
+        let t_down = if t_end { self.down.duration() } else { t - self.t_cruise };
+        let k = self.down.at(self.v_peak, t_down);
         Kin {
             s: s1 + self.v_peak * self.t_cruise + k.s,
             ..k

@@ -96,7 +96,9 @@ impl FeedLaw for Quintic {
         self.v_end
     }
     fn at(&self, t: f64) -> Kin {
-        let t = t.clamp(0.0, self.duration());
+        let total = self.duration();
+        let t = t.clamp(0.0, total);
+        let t_end = t >= total;
         if t < self.t_up {
             return ramp_at(self.v_in, self.v_peak, self.t_up, t);
         }
@@ -110,7 +112,9 @@ impl FeedLaw for Quintic {
                 j: 0.0,
             };
         }
-        let k = ramp_at(self.v_peak, self.v_end, self.t_down, (t - self.t_cruise).min(self.t_down));
+        // At the very end take the ramp's own duration, so that a = 0 exactly despite rounding of t.
+        let t_down = if t_end { self.t_down } else { (t - self.t_cruise).min(self.t_down) };
+        let k = ramp_at(self.v_peak, self.v_end, self.t_down, t_down);
         Kin {
             s: s1 + self.v_peak * self.t_cruise + k.s,
             ..k
