@@ -10,13 +10,23 @@ const KINDS: [ProfileKind; 3] = [ProfileKind::Quintic, ProfileKind::Jerk15, Prof
 /// Time-optimal rest-to-rest duration of the 7-phase law (a, j limited; independent of scurve7.rs):
 /// a ramp 0 → v lasts v/A + A/J (A reached) or 2·sqrt(v/J), and covers v/2 times that.
 fn scurve7_rest_to_rest(l: f64, v: f64, a: f64, j: f64) -> f64 {
-    let ramp = |v: f64| if v >= a * a / j { v / a + a / j } else { 2.0 * (v / j).sqrt() };
+    let ramp = |v: f64| {
+        if v >= a * a / j {
+            v / a + a / j
+        } else {
+            2.0 * (v / j).sqrt()
+        }
+    };
     if v * ramp(v) <= l {
         return l / v + ramp(v);
     }
     // Peak below v: v_p·T(v_p) = l, A reached (v_p²/A + v_p·A/J = l) or not (2·v_p^{3/2}/sqrt(J) = l).
     let with_a = 0.5 * a * ((a * a / (j * j) + 4.0 * l / a).sqrt() - a / j);
-    let v_p = if with_a >= a * a / j { with_a } else { (l * l * j / 4.0).cbrt() };
+    let v_p = if with_a >= a * a / j {
+        with_a
+    } else {
+        (l * l * j / 4.0).cbrt()
+    };
     2.0 * ramp(v_p)
 }
 
@@ -43,20 +53,27 @@ fn request() -> impl Strategy<Value = BlockRequest> {
         speed(),
         speed(),
         log_range(1e-3, 1.0),
-        (log_range(0.05, 2.0), log_range(0.2, 30.0), log_range(5.0, 2000.0), log_range(100.0, 1e7)),
+        (
+            log_range(0.05, 2.0),
+            log_range(0.2, 30.0),
+            log_range(5.0, 2000.0),
+            log_range(100.0, 1e7),
+        ),
     )
-        .prop_map(|(length, v_in, v_out, v_feed, (v_max, a_max, j_max, snap_max))| BlockRequest {
-            length,
-            v_in,
-            v_out,
-            v_feed,
-            limits: Limits {
-                v_max,
-                a_max,
-                j_max,
-                snap_max,
+        .prop_map(
+            |(length, v_in, v_out, v_feed, (v_max, a_max, j_max, snap_max))| BlockRequest {
+                length,
+                v_in,
+                v_out,
+                v_feed,
+                limits: Limits {
+                    v_max,
+                    a_max,
+                    j_max,
+                    snap_max,
+                },
             },
-        })
+        )
 }
 
 fn check(kind: ProfileKind, req: &BlockRequest) -> Result<(), TestCaseError> {
@@ -76,9 +93,21 @@ fn check(kind: ProfileKind, req: &BlockRequest) -> Result<(), TestCaseError> {
         for i in 0..=per_phase {
             let t = (t0 + i as f64 * h).min(total);
             let k = p.at(t);
-            prop_assert!(k.a.abs() <= lim.a_max * (1.0 + 1e-9), "{kind:?} a = {} in phase {ph}", k.a);
-            prop_assert!(k.j.abs() <= lim.j_max * (1.0 + 1e-9), "{kind:?} j = {} in phase {ph}", k.j);
-            prop_assert!(k.v >= -1e-12 && k.v <= v_top * (1.0 + 1e-12) + 1e-15, "{kind:?} v = {}", k.v);
+            prop_assert!(
+                k.a.abs() <= lim.a_max * (1.0 + 1e-9),
+                "{kind:?} a = {} in phase {ph}",
+                k.a
+            );
+            prop_assert!(
+                k.j.abs() <= lim.j_max * (1.0 + 1e-9),
+                "{kind:?} j = {} in phase {ph}",
+                k.j
+            );
+            prop_assert!(
+                k.v >= -1e-12 && k.v <= v_top * (1.0 + 1e-12) + 1e-15,
+                "{kind:?} v = {}",
+                k.v
+            );
             prop_assert!(k.s >= prev_s - 1e-15, "{kind:?} s decreases");
             if i > 0 {
                 v_integral += 0.5 * (prev_v + k.v) * h;
@@ -94,15 +123,34 @@ fn check(kind: ProfileKind, req: &BlockRequest) -> Result<(), TestCaseError> {
         t0 += dur;
     }
     let (start, end) = (p.at(0.0), p.at(total));
-    prop_assert!(start.a == 0.0 && end.a.abs() <= 1e-12 * lim.a_max, "{kind:?} a ends {} {}", start.a, end.a);
+    prop_assert!(
+        start.a == 0.0 && end.a.abs() <= 1e-12 * lim.a_max,
+        "{kind:?} a ends {} {}",
+        start.a,
+        end.a
+    );
     prop_assert!(start.s == 0.0 && (start.v - req.v_in).abs() <= 1e-15);
-    prop_assert!((end.s - p.length()).abs() <= 1e-12 * p.length() + 1e-15, "{kind:?} s(T) ≠ length");
-    prop_assert!((end.v - p.v_end()).abs() <= 1e-12 * v_top + 1e-15, "{kind:?} v(T) ≠ v_end");
+    prop_assert!(
+        (end.s - p.length()).abs() <= 1e-12 * p.length() + 1e-15,
+        "{kind:?} s(T) ≠ length"
+    );
+    prop_assert!(
+        (end.v - p.v_end()).abs() <= 1e-12 * v_top + 1e-15,
+        "{kind:?} v(T) ≠ v_end"
+    );
     // The closed-form s agrees with the integral of v (trapezoid rule per phase, h² error).
-    prop_assert!((v_integral - end.s).abs() <= 1e-4 * end.s + 1e-12, "{kind:?} ∫v = {v_integral} vs {}", end.s);
+    prop_assert!(
+        (v_integral - end.s).abs() <= 1e-4 * end.s + 1e-12,
+        "{kind:?} ∫v = {v_integral} vs {}",
+        end.s
+    );
     let reach = feed::ramp_distance(kind, req.v_in, req.v_out, &lim);
     if reach <= req.length {
-        prop_assert!((p.length() - req.length).abs() <= 1e-12 * req.length, "{kind:?} length {}", p.length());
+        prop_assert!(
+            (p.length() - req.length).abs() <= 1e-12 * req.length,
+            "{kind:?} length {}",
+            p.length()
+        );
         prop_assert!(p.v_end() == req.v_out);
     } else {
         // Closest feasible exit: between v_in and v_out, its ramp spans the block.
@@ -110,7 +158,11 @@ fn check(kind: ProfileKind, req: &BlockRequest) -> Result<(), TestCaseError> {
         prop_assert!(p.v_end() >= lo && p.v_end() <= hi);
         // (Its ramp may fall short of the block by float resolution in v: the rest is cruised.)
         let d = feed::ramp_distance(kind, req.v_in, p.v_end(), &lim);
-        prop_assert!(d <= req.length * (1.0 + 1e-12), "{kind:?} ramp {d} vs {}", req.length);
+        prop_assert!(
+            d <= req.length * (1.0 + 1e-12),
+            "{kind:?} ramp {d} vs {}",
+            req.length
+        );
         let closer = p.v_end() + (req.v_out - p.v_end()).signum() * (1e-9 * hi + 1e-15);
         let d = feed::ramp_distance(kind, req.v_in, closer, &lim);
         prop_assert!(d > req.length, "{kind:?} exit {} not the closest", p.v_end());
@@ -172,20 +224,52 @@ fn degenerate_requests_do_not_panic() {
     for kind in KINDS {
         // No room: the entry speed is kept, nothing is covered.
         let p = Profile::plan(kind, &zero);
-        assert!(p.duration() == 0.0 && p.length() == 0.0 && p.v_end() == 0.1, "{kind:?}");
+        assert!(
+            p.duration() == 0.0 && p.length() == 0.0 && p.v_end() == 0.1,
+            "{kind:?}"
+        );
         // Nonsense numbers give some finite profile (or a standstill), never a panic.
         for req in [
-            BlockRequest { length: f64::NAN, v_in: f64::NAN, v_feed: f64::NAN, ..zero },
-            BlockRequest { length: 0.01, v_in: 0.0, v_feed: 0.0, ..zero },
-            BlockRequest { limits: Limits { a_max: 0.0, j_max: -1.0, snap_max: 0.0, ..limits }, ..zero },
+            BlockRequest {
+                length: f64::NAN,
+                v_in: f64::NAN,
+                v_feed: f64::NAN,
+                ..zero
+            },
+            BlockRequest {
+                length: 0.01,
+                v_in: 0.0,
+                v_feed: 0.0,
+                ..zero
+            },
+            BlockRequest {
+                limits: Limits {
+                    a_max: 0.0,
+                    j_max: -1.0,
+                    snap_max: 0.0,
+                    ..limits
+                },
+                ..zero
+            },
         ] {
             let p = Profile::plan(kind, &req);
             let k = p.at(p.duration());
             assert!(k.s.is_finite() && k.v.is_finite(), "{kind:?} {req:?} {k:?}");
         }
         // No snap limit (0): jerk15 falls back to its 7-phase shape and still ends exactly.
-        let req = BlockRequest { length: 0.01, v_in: 0.0, limits: Limits { snap_max: 0.0, ..limits }, ..zero };
+        let req = BlockRequest {
+            length: 0.01,
+            v_in: 0.0,
+            limits: Limits {
+                snap_max: 0.0,
+                ..limits
+            },
+            ..zero
+        };
         let p = Profile::plan(kind, &req);
-        assert!((p.at(p.duration()).s - 0.01).abs() < 1e-15 && p.at(p.duration()).a == 0.0, "{kind:?}");
+        assert!(
+            (p.at(p.duration()).s - 0.01).abs() < 1e-15 && p.at(p.duration()).a == 0.0,
+            "{kind:?}"
+        );
     }
 }

@@ -91,7 +91,9 @@ impl Ramp15 {
     }
 
     pub fn phases(&self) -> [f64; 7] {
-        [self.t_j, self.t_2, self.t_j, self.t_4, self.t_j, self.t_2, self.t_j]
+        [
+            self.t_j, self.t_2, self.t_j, self.t_4, self.t_j, self.t_2, self.t_j,
+        ]
     }
 
     /// State at time t of the ramp starting at speed v1, s from the ramp start.
@@ -136,7 +138,7 @@ pub(super) fn symmetric_ramp_at(half: &[(f64, f64, f64)], dv: f64, total: f64, v
     }
     if mirrored {
         // G(τ) = |dv|·T/2 − |dv|·u + G(u), u = T − τ.
-        big_g = m * total / 2.0 - m * tau + big_g;
+        big_g += m * total / 2.0 - m * tau;
         g = m - g;
         j = -j;
     }
@@ -216,7 +218,11 @@ impl FeedLaw for Jerk15 {
             };
         }
         // At the very end take the ramp's own duration, so that a = 0 exactly despite rounding of t.
-        let t_down = if t_end { self.down.duration() } else { t - self.t_cruise };
+        let t_down = if t_end {
+            self.down.duration()
+        } else {
+            t - self.t_cruise
+        };
         let k = self.down.at(self.v_peak, t_down);
         Kin {
             s: s1 + self.v_peak * self.t_cruise + k.s,
@@ -333,7 +339,11 @@ mod tests {
         ];
         for (l, lim, want, tol) in rows {
             let p = rest_to_rest(l, lim);
-            assert!((p.duration() - want).abs() < tol, "l = {l}: {} vs {want}", p.duration());
+            assert!(
+                (p.duration() - want).abs() < tol,
+                "l = {l}: {} vs {want}",
+                p.duration()
+            );
             assert!((p.at(p.duration()).s - l * MM).abs() < 1e-15);
         }
         // l = 6 mm: the seed prints 0.1639 s; the time-optimal 15-phase profile takes 0.16197 s.

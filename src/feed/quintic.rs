@@ -113,7 +113,11 @@ impl FeedLaw for Quintic {
             };
         }
         // At the very end take the ramp's own duration, so that a = 0 exactly despite rounding of t.
-        let t_down = if t_end { self.t_down } else { (t - self.t_cruise).min(self.t_down) };
+        let t_down = if t_end {
+            self.t_down
+        } else {
+            (t - self.t_cruise).min(self.t_down)
+        };
         let k = ramp_at(self.v_peak, self.v_end, self.t_down, t_down);
         Kin {
             s: s1 + self.v_peak * self.t_cruise + k.s,
@@ -154,7 +158,8 @@ pub(super) fn largest_within(v0: f64, length: f64, dist: impl Fn(f64) -> f64) ->
     let mut step = v0.max(1e-3);
     for _ in 0..80 {
         let hi = v0 + step;
-        if !(dist(hi) <= length) {
+        let fits = dist(hi) <= length; // NaN counts as "does not fit"
+        if !fits {
             return bisect(good, hi, |v| dist(v) <= length);
         }
         good = hi;
@@ -179,7 +184,8 @@ impl Shape {
     pub fn solve(req: &BlockRequest, dist: impl Fn(f64, f64) -> f64) -> Shape {
         let l = req.length.max(0.0);
         let (v_in, v_out) = (req.v_in.max(0.0), req.v_out.max(0.0));
-        if !(dist(v_in, v_out) <= l) {
+        let reachable = dist(v_in, v_out) <= l; // NaN counts as unreachable
+        if !reachable {
             let v_end = bisect(v_in, v_out, |v| dist(v_in, v) <= l);
             let v_peak = v_in.max(v_end);
             return Shape {
@@ -234,7 +240,7 @@ mod tests {
         }
         assert!((a_max - 1.875).abs() < 1e-9, "{a_max}");
         assert!((t_a - 0.5).abs() < 1e-6); // eq. 2.22
-        // 5.773 as printed (the paper truncates 5.77350…), and the exact 10/√3 we use.
+                                           // 5.773 as printed (the paper truncates 5.77350…), and the exact 10/√3 we use.
         assert!((j_max - 5.773).abs() < 1e-3, "{j_max}");
         assert!((j_max - JERK_FACTOR).abs() < 1e-9);
         assert!((t_j - 0.211).abs() < 1e-3, "{t_j}"); // eq. 2.23
@@ -262,7 +268,9 @@ mod tests {
             limits: lim,
         });
         assert!((p.t_up - t_d).abs() < 1e-15 && p.t_cruise > 0.0);
-        let peak_a = (0..=1000).map(|i| p.at(p.t_up * i as f64 / 1000.0).a).fold(0.0, f64::max);
+        let peak_a = (0..=1000)
+            .map(|i| p.at(p.t_up * i as f64 / 1000.0).a)
+            .fold(0.0, f64::max);
         assert!(peak_a <= 12.5 && peak_a > 12.5 * 0.9999);
     }
 
