@@ -350,7 +350,10 @@ mod tests {
             );
             assert!((p.at(p.duration()).s - l * MM).abs() < 1e-15);
             let (s, v_end, _) = integrate_jerk(&p, 20_000);
-            assert!((s - l * MM).abs() < 1e-9 && v_end.abs() < 1e-9, "l = {l}: ∫∫∫j = {s}");
+            assert!(
+                (s - l * MM).abs() < 1e-9 && v_end.abs() < 1e-9,
+                "l = {l}: ∫∫∫j = {s}"
+            );
         }
         // l = 6 mm: the seed prints 0.1639 s; the time-optimal 15-phase profile takes 0.16197 s.
         // Check: a_peak solves 2·a·T_r² = l with T_r = J/R + a/J (J reached, A not), a = 1829.6 mm/s².
