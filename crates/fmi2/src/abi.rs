@@ -25,8 +25,14 @@ pub struct CallbackFunctions {
 pub static TYPES_PLATFORM: &CStr = c"default";
 pub static VERSION: &CStr = c"2.0";
 
-const ALL_ACTIVE: &[State] =
-    &[State::Instantiated, State::InitializationMode, State::StepComplete, State::StepFailed, State::Terminated, State::Error];
+const ALL_ACTIVE: &[State] = &[
+    State::Instantiated,
+    State::InitializationMode,
+    State::StepComplete,
+    State::StepFailed,
+    State::Terminated,
+    State::Error,
+];
 
 /// Run `f` on the instance behind `c`, turning a panic into fmi2Fatal (logged).
 unsafe fn with<M: Model>(c: Component, f: impl FnOnce(&mut Instance<M>) -> Status) -> c_int {
@@ -44,7 +50,9 @@ unsafe fn with<M: Model>(c: Component, f: impl FnOnce(&mut Instance<M>) -> Statu
         Ok(s) => s as c_int,
         Err(_) => {
             inst.state = State::Fatal;
-            let _ = catch_unwind(AssertUnwindSafe(|| inst.log(Status::Fatal, 2, "internal error (panic); instance is unusable")));
+            let _ = catch_unwind(AssertUnwindSafe(|| {
+                inst.log(Status::Fatal, 2, "internal error (panic); instance is unusable")
+            }));
             Status::Fatal as c_int
         }
     }
@@ -103,7 +111,13 @@ pub unsafe fn instantiate<M: Model>(
             if let Some(l) = logger {
                 let text = CString::new(msg.replace('%', "%%")).unwrap_or_default();
                 let n = CString::new(name).unwrap_or_default();
-                l(env, n.as_ptr(), Status::Error as c_int, c"logStatusError".as_ptr(), text.as_ptr());
+                l(
+                    env,
+                    n.as_ptr(),
+                    Status::Error as c_int,
+                    c"logStatusError".as_ptr(),
+                    text.as_ptr(),
+                );
             }
         };
         if instance_name.is_null() || name.is_empty() {
@@ -118,7 +132,10 @@ pub unsafe fn instantiate<M: Model>(
         match opt_str(guid) {
             Some(g) if g == info.guid => {}
             g => {
-                report(&format!("fmi2Instantiate: GUID {:?} does not match this FMU's {}", g, info.guid));
+                report(&format!(
+                    "fmi2Instantiate: GUID {:?} does not match this FMU's {}",
+                    g, info.guid
+                ));
                 return std::ptr::null_mut();
             }
         }
@@ -156,7 +173,12 @@ pub unsafe fn free_instance<M: Model>(c: Component) {
 
 /// # Safety
 /// C ABI.
-pub unsafe fn set_debug_logging<M: Model>(c: Component, on: Boolean, n: usize, cats: *const *const c_char) -> c_int {
+pub unsafe fn set_debug_logging<M: Model>(
+    c: Component,
+    on: Boolean,
+    n: usize,
+    cats: *const *const c_char,
+) -> c_int {
     with::<M>(c, |inst| {
         let Some(cats) = slice(cats, n) else {
             return inst.error("fmi2SetDebugLogging: categories is NULL with nCategories > 0");
@@ -174,7 +196,14 @@ pub unsafe fn set_debug_logging<M: Model>(c: Component, on: Boolean, n: usize, c
 
 /// # Safety
 /// C ABI.
-pub unsafe fn setup_experiment<M: Model>(c: Component, _tol_defined: Boolean, _tol: f64, start: f64, stop_defined: Boolean, stop: f64) -> c_int {
+pub unsafe fn setup_experiment<M: Model>(
+    c: Component,
+    _tol_defined: Boolean,
+    _tol: f64,
+    start: f64,
+    stop_defined: Boolean,
+    stop: f64,
+) -> c_int {
     with::<M>(c, |inst| {
         if let Err(s) = inst.require("fmi2SetupExperiment", &[State::Instantiated]) {
             return s;
@@ -255,7 +284,12 @@ macro_rules! getter {
     ($fn:ident, $name:literal, $t:ty, $family:expr, $pat:pat => $val:expr) => {
         /// # Safety
         /// C ABI.
-        pub unsafe fn $fn<M: Model>(c: Component, vr: *const ValueReference, n: usize, out: *mut $t) -> c_int {
+        pub unsafe fn $fn<M: Model>(
+            c: Component,
+            vr: *const ValueReference,
+            n: usize,
+            out: *mut $t,
+        ) -> c_int {
             with::<M>(c, |inst| {
                 let (Some(vr), Some(out)) = (slice(vr, n), slice_mut(out, n)) else {
                     return inst.error(concat!($name, ": NULL array with nvr > 0"));
@@ -263,7 +297,9 @@ macro_rules! getter {
                 for (r, o) in vr.iter().zip(out.iter_mut()) {
                     match inst.get($name, *r, $family) {
                         Ok($pat) => *o = $val,
-                        Ok(_) => return inst.error(concat!($name, ": model returned a value of another type")),
+                        Ok(_) => {
+                            return inst.error(concat!($name, ": model returned a value of another type"))
+                        }
                         Err(s) => return s,
                     }
                 }
@@ -279,7 +315,12 @@ getter!(get_boolean, "fmi2GetBoolean", Boolean, Type::Boolean, Value::Boolean(x)
 
 /// # Safety
 /// C ABI. The strings stay valid until the next fmi2GetString on this instance.
-pub unsafe fn get_string<M: Model>(c: Component, vr: *const ValueReference, n: usize, out: *mut *const c_char) -> c_int {
+pub unsafe fn get_string<M: Model>(
+    c: Component,
+    vr: *const ValueReference,
+    n: usize,
+    out: *mut *const c_char,
+) -> c_int {
     with::<M>(c, |inst| {
         let (Some(vr), Some(out)) = (slice(vr, n), slice_mut(out, n)) else {
             return inst.error("fmi2GetString: NULL array with nvr > 0");
@@ -287,7 +328,9 @@ pub unsafe fn get_string<M: Model>(c: Component, vr: *const ValueReference, n: u
         inst.strings.clear();
         for r in vr {
             match inst.get("fmi2GetString", *r, Type::String) {
-                Ok(Value::String(s)) => inst.strings.push(CString::new(s.replace('\0', "")).unwrap_or_default()),
+                Ok(Value::String(s)) => inst
+                    .strings
+                    .push(CString::new(s.replace('\0', "")).unwrap_or_default()),
                 Ok(_) => return inst.error("fmi2GetString: model returned a value of another type"),
                 Err(s) => return s,
             }
@@ -303,7 +346,12 @@ macro_rules! setter {
     ($fn:ident, $name:literal, $t:ty, $family:expr, |$x:ident| $val:expr) => {
         /// # Safety
         /// C ABI.
-        pub unsafe fn $fn<M: Model>(c: Component, vr: *const ValueReference, n: usize, values: *const $t) -> c_int {
+        pub unsafe fn $fn<M: Model>(
+            c: Component,
+            vr: *const ValueReference,
+            n: usize,
+            values: *const $t,
+        ) -> c_int {
             with::<M>(c, |inst| {
                 let (Some(vr), Some(values)) = (slice(vr, n), slice(values, n)) else {
                     return inst.error(concat!($name, ": NULL array with nvr > 0"));
@@ -320,12 +368,21 @@ macro_rules! setter {
 }
 
 setter!(set_real, "fmi2SetReal", f64, Type::Real, |x| Value::Real(x));
-setter!(set_integer, "fmi2SetInteger", c_int, Type::Integer, |x| Value::Integer(x));
-setter!(set_boolean, "fmi2SetBoolean", Boolean, Type::Boolean, |x| Value::Boolean(x != 0));
+setter!(set_integer, "fmi2SetInteger", c_int, Type::Integer, |x| {
+    Value::Integer(x)
+});
+setter!(set_boolean, "fmi2SetBoolean", Boolean, Type::Boolean, |x| {
+    Value::Boolean(x != 0)
+});
 
 /// # Safety
 /// C ABI.
-pub unsafe fn set_string<M: Model>(c: Component, vr: *const ValueReference, n: usize, values: *const *const c_char) -> c_int {
+pub unsafe fn set_string<M: Model>(
+    c: Component,
+    vr: *const ValueReference,
+    n: usize,
+    values: *const *const c_char,
+) -> c_int {
     with::<M>(c, |inst| {
         let (Some(vr), Some(values)) = (slice(vr, n), slice(values, n)) else {
             return inst.error("fmi2SetString: NULL array with nvr > 0");
@@ -361,7 +418,10 @@ pub unsafe fn do_step<M: Model>(c: Component, t: f64, h: f64, _no_prior: Boolean
         }
         if let Some(stop) = inst.stop_time {
             if t + h > stop + 1e-9 * stop.abs().max(1.0) {
-                return inst.error(&format!("fmi2DoStep: step to {} goes past the stop time {stop}", t + h));
+                return inst.error(&format!(
+                    "fmi2DoStep: step to {} goes past the stop time {stop}",
+                    t + h
+                ));
             }
         }
         match inst.model.do_step(h) {
@@ -448,14 +508,22 @@ pub unsafe fn serialized_fmu_state_size<M: Model>(c: Component, state: FmuState,
 
 /// # Safety
 /// C ABI.
-pub unsafe fn serialize_fmu_state<M: Model>(c: Component, state: FmuState, out: *mut u8, size: usize) -> c_int {
+pub unsafe fn serialize_fmu_state<M: Model>(
+    c: Component,
+    state: FmuState,
+    out: *mut u8,
+    size: usize,
+) -> c_int {
     with::<M>(c, |inst| {
         if out.is_null() || state.is_null() || !inst.snapshots.contains(&(state as usize)) {
             return inst.error("fmi2SerializeFMUstate: bad FMU state or NULL buffer");
         }
         let bytes = Instance::<M>::serialize(&*(state as *const Snapshot<M>));
         if bytes.len() != size {
-            return inst.error(&format!("fmi2SerializeFMUstate: size {size}, the state needs {}", bytes.len()));
+            return inst.error(&format!(
+                "fmi2SerializeFMUstate: size {size}, the state needs {}",
+                bytes.len()
+            ));
         }
         std::ptr::copy_nonoverlapping(bytes.as_ptr(), out, size);
         Status::Ok
@@ -464,7 +532,12 @@ pub unsafe fn serialize_fmu_state<M: Model>(c: Component, state: FmuState, out: 
 
 /// # Safety
 /// C ABI.
-pub unsafe fn deserialize_fmu_state<M: Model>(c: Component, bytes: *const u8, size: usize, state: *mut FmuState) -> c_int {
+pub unsafe fn deserialize_fmu_state<M: Model>(
+    c: Component,
+    bytes: *const u8,
+    size: usize,
+    state: *mut FmuState,
+) -> c_int {
     with::<M>(c, |inst| {
         let (Some(bytes), false) = (slice(bytes, size), state.is_null()) else {
             return inst.error("fmi2DeSerializeFMUstate: NULL argument");
@@ -490,7 +563,9 @@ pub unsafe fn deserialize_fmu_state<M: Model>(c: Component, bytes: *const u8, si
 /// # Safety
 /// C ABI.
 pub unsafe fn unsupported<M: Model>(c: Component, function: &str) -> c_int {
-    with::<M>(c, |inst| inst.error(&format!("{function} is not supported by this FMU")))
+    with::<M>(c, |inst| {
+        inst.error(&format!("{function} is not supported by this FMU"))
+    })
 }
 
 /// # Safety
@@ -528,7 +603,12 @@ macro_rules! export_fmi2 {
                 abi::VERSION.as_ptr()
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetDebugLogging(c: Component, on: Boolean, n: usize, cats: *const *const c_char) -> c_int {
+            pub unsafe extern "C" fn fmi2SetDebugLogging(
+                c: Component,
+                on: Boolean,
+                n: usize,
+                cats: *const *const c_char,
+            ) -> c_int {
                 abi::set_debug_logging::<M>(c, on, n, cats)
             }
             #[no_mangle]
@@ -548,7 +628,14 @@ macro_rules! export_fmi2 {
                 abi::free_instance::<M>(c)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetupExperiment(c: Component, td: Boolean, tol: f64, start: f64, sd: Boolean, stop: f64) -> c_int {
+            pub unsafe extern "C" fn fmi2SetupExperiment(
+                c: Component,
+                td: Boolean,
+                tol: f64,
+                start: f64,
+                sd: Boolean,
+                stop: f64,
+            ) -> c_int {
                 abi::setup_experiment::<M>(c, td, tol, start, sd, stop)
             }
             #[no_mangle]
@@ -568,35 +655,75 @@ macro_rules! export_fmi2 {
                 abi::reset::<M>(c)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetReal(c: Component, vr: *const ValueReference, n: usize, v: *mut f64) -> c_int {
+            pub unsafe extern "C" fn fmi2GetReal(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *mut f64,
+            ) -> c_int {
                 abi::get_real::<M>(c, vr, n, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetInteger(c: Component, vr: *const ValueReference, n: usize, v: *mut c_int) -> c_int {
+            pub unsafe extern "C" fn fmi2GetInteger(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *mut c_int,
+            ) -> c_int {
                 abi::get_integer::<M>(c, vr, n, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetBoolean(c: Component, vr: *const ValueReference, n: usize, v: *mut Boolean) -> c_int {
+            pub unsafe extern "C" fn fmi2GetBoolean(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *mut Boolean,
+            ) -> c_int {
                 abi::get_boolean::<M>(c, vr, n, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetString(c: Component, vr: *const ValueReference, n: usize, v: *mut *const c_char) -> c_int {
+            pub unsafe extern "C" fn fmi2GetString(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *mut *const c_char,
+            ) -> c_int {
                 abi::get_string::<M>(c, vr, n, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetReal(c: Component, vr: *const ValueReference, n: usize, v: *const f64) -> c_int {
+            pub unsafe extern "C" fn fmi2SetReal(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *const f64,
+            ) -> c_int {
                 abi::set_real::<M>(c, vr, n, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetInteger(c: Component, vr: *const ValueReference, n: usize, v: *const c_int) -> c_int {
+            pub unsafe extern "C" fn fmi2SetInteger(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *const c_int,
+            ) -> c_int {
                 abi::set_integer::<M>(c, vr, n, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetBoolean(c: Component, vr: *const ValueReference, n: usize, v: *const Boolean) -> c_int {
+            pub unsafe extern "C" fn fmi2SetBoolean(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *const Boolean,
+            ) -> c_int {
                 abi::set_boolean::<M>(c, vr, n, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetString(c: Component, vr: *const ValueReference, n: usize, v: *const *const c_char) -> c_int {
+            pub unsafe extern "C" fn fmi2SetString(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *const *const c_char,
+            ) -> c_int {
                 abi::set_string::<M>(c, vr, n, v)
             }
             #[no_mangle]
@@ -612,15 +739,29 @@ macro_rules! export_fmi2 {
                 abi::free_fmu_state::<M>(c, s)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: Component, s: FmuState, size: *mut usize) -> c_int {
+            pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+                c: Component,
+                s: FmuState,
+                size: *mut usize,
+            ) -> c_int {
                 abi::serialized_fmu_state_size::<M>(c, s, size)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SerializeFMUstate(c: Component, s: FmuState, out: *mut u8, size: usize) -> c_int {
+            pub unsafe extern "C" fn fmi2SerializeFMUstate(
+                c: Component,
+                s: FmuState,
+                out: *mut u8,
+                size: usize,
+            ) -> c_int {
                 abi::serialize_fmu_state::<M>(c, s, out, size)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2DeSerializeFMUstate(c: Component, b: *const u8, size: usize, s: *mut FmuState) -> c_int {
+            pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+                c: Component,
+                b: *const u8,
+                size: usize,
+                s: *mut FmuState,
+            ) -> c_int {
                 abi::deserialize_fmu_state::<M>(c, b, size, s)
             }
             #[no_mangle]
@@ -672,15 +813,27 @@ macro_rules! export_fmi2 {
                 abi::unsupported::<M>(c, "fmi2GetRealStatus")
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetIntegerStatus(c: Component, _kind: c_int, _v: *mut c_int) -> c_int {
+            pub unsafe extern "C" fn fmi2GetIntegerStatus(
+                c: Component,
+                _kind: c_int,
+                _v: *mut c_int,
+            ) -> c_int {
                 abi::unsupported::<M>(c, "fmi2GetIntegerStatus")
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetBooleanStatus(c: Component, _kind: c_int, _v: *mut Boolean) -> c_int {
+            pub unsafe extern "C" fn fmi2GetBooleanStatus(
+                c: Component,
+                _kind: c_int,
+                _v: *mut Boolean,
+            ) -> c_int {
                 abi::unsupported::<M>(c, "fmi2GetBooleanStatus")
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetStringStatus(c: Component, _kind: c_int, _v: *mut *const c_char) -> c_int {
+            pub unsafe extern "C" fn fmi2GetStringStatus(
+                c: Component,
+                _kind: c_int,
+                _v: *mut *const c_char,
+            ) -> c_int {
                 abi::unsupported::<M>(c, "fmi2GetStringStatus")
             }
             #[allow(dead_code)]

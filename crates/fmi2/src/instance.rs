@@ -37,7 +37,10 @@ pub enum State {
 pub const LOG_CATEGORIES: [(&str, &str); 4] = [
     ("logEvents", "initialization, steps and state changes"),
     ("logStatusWarning", "warnings"),
-    ("logStatusError", "errors: bad calls, bad arguments, model failures"),
+    (
+        "logStatusError",
+        "errors: bad calls, bad arguments, model failures",
+    ),
     ("logAll", "everything"),
 ];
 
@@ -71,7 +74,13 @@ pub struct Instance<M: Model> {
 unsafe impl<M: Model> Send for Instance<M> {}
 
 impl<M: Model> Instance<M> {
-    pub fn new(name: &str, resources: Option<PathBuf>, logger: Option<LoggerFn>, env: *mut c_void, logging_on: bool) -> Self {
+    pub fn new(
+        name: &str,
+        resources: Option<PathBuf>,
+        logger: Option<LoggerFn>,
+        env: *mut c_void,
+        logging_on: bool,
+    ) -> Self {
         Instance {
             name: CString::new(name.replace('\0', "")).unwrap_or_default(),
             model: M::new(resources.as_deref()),
@@ -99,7 +108,15 @@ impl<M: Model> Instance<M> {
         let text = CString::new(message.replace('\0', "").replace('%', "%%")).unwrap_or_default();
         let cat = CString::new(LOG_CATEGORIES[category].0).unwrap_or_default();
         // SAFETY: the importer gave this callback and environment for exactly this use.
-        unsafe { logger(self.env, self.name.as_ptr(), status as c_int, cat.as_ptr(), text.as_ptr()) };
+        unsafe {
+            logger(
+                self.env,
+                self.name.as_ptr(),
+                status as c_int,
+                cat.as_ptr(),
+                text.as_ptr(),
+            )
+        };
     }
 
     pub fn error(&self, message: &str) -> Status {
@@ -150,7 +167,10 @@ impl<M: Model> Instance<M> {
             return Err(self.error(&format!("{function}: unknown value reference {vr}")));
         };
         if vars[i].kind.family() != family {
-            let msg = format!("{function}: variable '{}' (vr {vr}) is of type {:?}", vars[i].name, vars[i].kind);
+            let msg = format!(
+                "{function}: variable '{}' (vr {vr}) is of type {:?}",
+                vars[i].name, vars[i].kind
+            );
             return Err(self.error(&msg));
         }
         Ok(i)
@@ -159,7 +179,13 @@ impl<M: Model> Instance<M> {
     pub fn get(&mut self, function: &str, vr: u32, family: Type) -> Result<Value, Status> {
         self.require(
             function,
-            &[State::InitializationMode, State::StepComplete, State::StepFailed, State::Terminated, State::Error],
+            &[
+                State::InitializationMode,
+                State::StepComplete,
+                State::StepFailed,
+                State::Terminated,
+                State::Error,
+            ],
         )?;
         let i = self.lookup(function, vr, family)?;
         Ok(self.model.get(i))
@@ -168,12 +194,24 @@ impl<M: Model> Instance<M> {
     /// Set with the rules of FMI 2.0: before initialization ends, variables with a start value;
     /// after, inputs and tunable parameters only.
     pub fn set(&mut self, function: &str, vr: u32, family: Type, value: Value) -> Result<(), Status> {
-        self.require(function, &[State::Instantiated, State::InitializationMode, State::StepComplete])?;
+        self.require(
+            function,
+            &[
+                State::Instantiated,
+                State::InitializationMode,
+                State::StepComplete,
+            ],
+        )?;
         let i = self.lookup(function, vr, family)?;
         let v = &M::info().variables[i];
         let allowed = match self.state {
-            State::Instantiated | State::InitializationMode => v.has_start() && v.variability != Variability::Constant,
-            _ => v.causality == Causality::Input || (v.causality == Causality::Parameter && v.variability == Variability::Tunable),
+            State::Instantiated | State::InitializationMode => {
+                v.has_start() && v.variability != Variability::Constant
+            }
+            _ => {
+                v.causality == Causality::Input
+                    || (v.causality == Causality::Parameter && v.variability == Variability::Tunable)
+            }
         };
         if !allowed {
             let msg = format!(
@@ -186,16 +224,25 @@ impl<M: Model> Instance<M> {
             if let Type::Enumeration(e) = v.kind {
                 let items = M::info().enumerations[e].items.len() as i32;
                 if !(1..=items).contains(&n) {
-                    return Err(self.error(&format!("{function}: '{}' = {n} is not an item 1 … {items}", v.name)));
+                    return Err(self.error(&format!(
+                        "{function}: '{}' = {n} is not an item 1 … {items}",
+                        v.name
+                    )));
                 }
             }
         }
         let name = v.name.clone();
-        self.model.set(i, value).map_err(|m| self.error(&format!("{function}: '{name}': {m}")))
+        self.model
+            .set(i, value)
+            .map_err(|m| self.error(&format!("{function}: '{name}': {m}")))
     }
 
     pub fn snapshot(&self) -> Snapshot<M> {
-        Snapshot { model: self.model.clone(), time: self.time, state: self.state }
+        Snapshot {
+            model: self.model.clone(),
+            time: self.time,
+            state: self.state,
+        }
     }
 
     pub fn restore(&mut self, s: &Snapshot<M>) {

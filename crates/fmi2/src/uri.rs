@@ -31,8 +31,11 @@ fn percent_decode(s: &str) -> Result<String, String> {
     let mut i = 0;
     while i < b.len() {
         if b[i] == b'%' {
-            let hex = s.get(i + 1..i + 3).ok_or_else(|| format!("bad percent-encoding in '{s}'"))?;
-            let v = u8::from_str_radix(hex, 16).map_err(|_| format!("bad percent-encoding '%{hex}' in '{s}'"))?;
+            let hex = s
+                .get(i + 1..i + 3)
+                .ok_or_else(|| format!("bad percent-encoding in '{s}'"))?;
+            let v =
+                u8::from_str_radix(hex, 16).map_err(|_| format!("bad percent-encoding '%{hex}' in '{s}'"))?;
             out.push(v);
             i += 3;
         } else {
