@@ -280,8 +280,15 @@ mod tests {
     #[test]
     fn quarter_circle_end_points_and_derivatives() {
         // G3 X0 Y10 from (10, 0) about (0, 0): a quarter circle, R = 10 mm.
-        let arc = Arc::from_gcode([10.0 * MM, 0.0, 0.0], [0.0, 10.0 * MM, 0.0], [0.0; 3], Plane::XY, false, 0)
-            .unwrap();
+        let arc = Arc::from_gcode(
+            [10.0 * MM, 0.0, 0.0],
+            [0.0, 10.0 * MM, 0.0],
+            [0.0; 3],
+            Plane::XY,
+            false,
+            0,
+        )
+        .unwrap();
         assert!((arc.length() - PI / 2.0 * 10.0 * MM).abs() < 1e-15);
         assert_eq!(arc.eval(arc.length()).p, [0.0, 10.0 * MM, 0.0]);
         assert_eq!(arc.eval(0.0).p, [10.0 * MM, 0.0, 0.0]);
@@ -295,8 +302,15 @@ mod tests {
         assert!(dist(g.d2, [-c / r, -c / r, 0.0]) < 1e-12);
         assert!(dist(g.d3, [c / (r * r), -c / (r * r), 0.0]) < 1e-9);
         // G2 the other way round: three quarters of the circle, clockwise.
-        let cw = Arc::from_gcode([10.0 * MM, 0.0, 0.0], [0.0, 10.0 * MM, 0.0], [0.0; 3], Plane::XY, true, 0)
-            .unwrap();
+        let cw = Arc::from_gcode(
+            [10.0 * MM, 0.0, 0.0],
+            [0.0, 10.0 * MM, 0.0],
+            [0.0; 3],
+            Plane::XY,
+            true,
+            0,
+        )
+        .unwrap();
         assert!((cw.length() - 1.5 * PI * r).abs() < 1e-15);
         let g = cw.eval(0.0);
         assert!(dist(g.d1, [0.0, -1.0, 0.0]) < 1e-15);
@@ -349,8 +363,15 @@ mod tests {
         let arc = Arc::from_gcode([0.0, r, 0.0], [0.0, 0.0, r], [0.0; 3], Plane::YZ, false, 0).unwrap();
         assert!((arc.length() - PI / 2.0 * r).abs() < 1e-15);
         // Off-bisector centre is projected: both radii equal, end exact.
-        let arc =
-            Arc::from_gcode([r, 0.0, 0.0], [0.0, r, 0.0], [1e-6, 0.0, 0.0], Plane::XY, false, 0).unwrap();
+        let arc = Arc::from_gcode(
+            [r, 0.0, 0.0],
+            [0.0, r, 0.0],
+            [1e-6, 0.0, 0.0],
+            Plane::XY,
+            false,
+            0,
+        )
+        .unwrap();
         assert_eq!(arc.eval(arc.length()).p, [0.0, r, 0.0]);
         assert_eq!(arc.eval(0.0).p, [r, 0.0, 0.0]);
         assert!(dist(add(arc.center, scale(arc.e1, arc.radius)), [r, 0.0, 0.0]) < 1e-17);

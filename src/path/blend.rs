@@ -114,7 +114,11 @@ impl Blend {
 
     fn integrate(&self, t0: f64, t1: f64) -> f64 {
         let (m, h) = (0.5 * (t0 + t1), 0.5 * (t1 - t0));
-        GL_X.iter().zip(&GL_W).map(|(x, w)| w * self.sigma(m + h * x)).sum::<f64>() * h
+        GL_X.iter()
+            .zip(&GL_W)
+            .map(|(x, w)| w * self.sigma(m + h * x))
+            .sum::<f64>()
+            * h
     }
 
     /// τ at arc length s (bounded work: panel lookup, then Newton on the panel's integral).

@@ -84,7 +84,11 @@ pub fn circular_blend(corner: Vec3, d_in: Vec3, d_out: Vec3, tolerance: f64, max
 /// amplitudes), with the chord-error limit of seed 003.
 pub fn circular_blend_speed(arc: &Arc, machine: &Machine) -> f64 {
     let v = constant_speed_limit(&arc.derivative_bounds(), machine);
-    v.min(chord_error_speed(arc.radius, machine.chord_tolerance, machine.interpolation_period))
+    v.min(chord_error_speed(
+        arc.radius,
+        machine.chord_tolerance,
+        machine.interpolation_period,
+    ))
 }
 
 #[cfg(test)]

@@ -29,7 +29,11 @@ impl Line {
     /// Point at arc length s; s ≥ length gives the programmed end exactly.
     pub fn eval(&self, s: f64) -> Geo {
         let u = self.direction();
-        let p = if s >= self.length() { self.end } else { add(self.start, scale(u, s)) };
+        let p = if s >= self.length() {
+            self.end
+        } else {
+            add(self.start, scale(u, s))
+        };
         Geo {
             p,
             d1: u,

@@ -139,8 +139,20 @@ impl PathBuilder {
     /// Take one block; push the segments that are now final onto `out`.
     pub fn push(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
         let (segment, feed) = match block.motion {
-            Motion::Rapid { to } => (Segment::Line(Line { start: block.from, end: to }), self.machine.max_feed),
-            Motion::Linear { to } => (Segment::Line(Line { start: block.from, end: to }), block.feed),
+            Motion::Rapid { to } => (
+                Segment::Line(Line {
+                    start: block.from,
+                    end: to,
+                }),
+                self.machine.max_feed,
+            ),
+            Motion::Linear { to } => (
+                Segment::Line(Line {
+                    start: block.from,
+                    end: to,
+                }),
+                block.feed,
+            ),
             Motion::Arc {
                 to,
                 center,
@@ -215,7 +227,11 @@ impl PathBuilder {
         let m = &self.machine;
         Limits {
             v_max: m.max_feed,
-            a_max: m.axes.iter().map(|a| a.max_acceleration).fold(f64::INFINITY, f64::min),
+            a_max: m
+                .axes
+                .iter()
+                .map(|a| a.max_acceleration)
+                .fold(f64::INFINITY, f64::min),
             j_max: m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min),
             snap_max: m.max_snap,
         }
@@ -345,7 +361,11 @@ pub fn norm(a: Vec3) -> f64 {
     dot(a, a).sqrt()
 }
 pub fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 /// a/|a|, zero for a zero vector.
 pub fn unit(a: Vec3) -> Vec3 {
