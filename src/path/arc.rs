@@ -72,7 +72,7 @@ impl Arc {
         let r0 = [p0[0] - c[0], p0[1] - c[1]];
         let r1 = [p1[0] - c[0], p1[1] - c[1]];
         let radius = r0[0].hypot(r0[1]);
-        if !(radius > 0.0) || !radius.is_finite() {
+        if radius.is_nan() || radius <= 0.0 || !radius.is_finite() {
             return None;
         }
         let ang0 = r0[1].atan2(r0[0]);
@@ -157,9 +157,10 @@ impl Arc {
         let mut b = [[0.0; 3]; 3];
         for i in 0..3 {
             let amp = self.e1[i].hypot(self.e2[i]);
-            b[0][i] = ((r * amp + (h * self.axis[i]).abs()) / k).min(1.0);
-            b[1][i] = r * amp / (k * k);
-            b[2][i] = r * amp / (k * k * k);
+            let [d1, d2, d3] = &mut b;
+            d1[i] = ((r * amp + (h * self.axis[i]).abs()) / k).min(1.0);
+            d2[i] = r * amp / (k * k);
+            d3[i] = r * amp / (k * k * k);
         }
         b
     }
@@ -201,17 +202,20 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
     v
 }
 
-/// Share of the axis acceleration and jerk that the tangential law keeps on an arc, at least.
-const TANGENTIAL_SHARE: f64 = 0.2;
+/// Share of the free acceleration and jerk (A_i/|d1_i|, J_i/|d1_i|) that the tangential law keeps
+/// on an arc, at least.
+const TANGENTIAL_SHARE: f64 = 0.1;
 
-/// Path limits of an arc (seed 004 §2.4). v_max = min(feed limit, chord error (seed 003),
-/// sqrt(A_n·ρ), (J_n·ρ²)^(1/3)) with A_n, J_n the axis limits over the in-plane amplitudes
-/// (eq. 9 form). The curvilinear acceleration is eq. 23–24 with the centripetal term at v_max:
-/// A_c = min_i (A_i − |d2_i|·v²)/|d1_i| (at most half the free value A_i/|d1_i|); the curvilinear
-/// jerk is eq. 19–20 with the chain-rule terms: J_c = min_i (J_i − |d3_i|v³ − 3|d2_i|·v·A_c)/|d1_i|.
-/// Where the paper evaluates these at the arc ends only, we bound them over the whole sweep, and
-/// v_max is lowered (bounded steps) until each keeps `TANGENTIAL_SHARE` of its free value, so that
-/// axis a = d2·v² + d1·a and j = d3·v³ + 3·d2·v·a + d1·j stay within the axis limits.
+/// Path limits of an arc (seed 004 §2.4). Start from v_max = min(feed limit, chord error (seed
+/// 003), sqrt(A_n·ρ), (J_n·ρ²)^(1/3)) with A_n, J_n the axis limits over the in-plane amplitudes
+/// (eq. 9 form, ρ the helix's radius of curvature). The curvilinear acceleration follows eq. 23–24
+/// with the centripetal term at v_max, A_c = min_i (A_i − |d2_i|·v²)/|d1_i|, and the curvilinear
+/// jerk eq. 19–20 with the chain-rule terms, J_c = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·A_c)/|d1_i|;
+/// the paper evaluates them at the arc ends only, we bound them over the whole sweep. A_c is taken
+/// no larger than half its free value nor than what leaves the jerk its share; if A_c or J_c
+/// would fall below `TANGENTIAL_SHARE` of their free values, v_max is lowered (bounded steps).
+/// So axis a = d2·v² + d1·a and j = d3·v³ + 3·d2·v·a + d1·j stay within the axis limits for any
+/// v ≤ v_max, |a| ≤ A_c, |j| ≤ J_c.
 pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
     let b = arc.derivative_bounds();
     let rho = arc.curvature_radius();
@@ -233,34 +237,42 @@ pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
     if let Some(j) = machine.max_path_jerk {
         j_free = j_free.min(j);
     }
-    let budget = |v: f64| -> (f64, f64) {
+    let (a_min, j_min) = (TANGENTIAL_SHARE * a_free, TANGENTIAL_SHARE * j_free);
+    // (A_c, J_c) at speed v, or None when either falls below its share.
+    let budget = |v: f64| -> Option<(f64, f64)> {
         let mut a_c = 0.5 * a_free;
         for (i, ax) in machine.axes.iter().enumerate() {
-            if b[0][i] > 1e-12 {
-                a_c = a_c.min((ax.max_acceleration - b[1][i] * v * v) / b[0][i]);
+            let [d1, d2, d3] = [b[0][i], b[1][i], b[2][i]];
+            if d1 > 1e-12 {
+                a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
+                // Leave the jerk its share: d3·v³ + 3·d2·v·a + d1·j_min ≤ J_i.
+                if d2 * v > 1e-12 {
+                    a_c = a_c.min((ax.max_jerk - d3 * v * v * v - d1 * j_min) / (3.0 * d2 * v));
+                }
             }
         }
         let mut j_c = j_free;
         for (i, ax) in machine.axes.iter().enumerate() {
-            if b[0][i] > 1e-12 {
-                let used = b[2][i] * v * v * v + 3.0 * b[1][i] * v * a_c.max(0.0);
-                j_c = j_c.min((ax.max_jerk - used) / b[0][i]);
+            let [d1, d2, d3] = [b[0][i], b[1][i], b[2][i]];
+            if d1 > 1e-12 {
+                j_c = j_c.min((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a_c) / d1);
             }
         }
-        (a_c, j_c)
+        (a_c >= a_min && j_c >= j_min).then_some((a_c, j_c))
     };
-    let (mut a_c, mut j_c) = budget(v);
-    for _ in 0..200 {
-        if a_c >= TANGENTIAL_SHARE * a_free && j_c >= TANGENTIAL_SHARE * j_free {
+    let mut found = budget(v);
+    for _ in 0..300 {
+        if found.is_some() {
             break;
         }
-        v *= 0.97;
-        (a_c, j_c) = budget(v);
+        v *= 0.98;
+        found = budget(v);
     }
+    let (a_c, j_c) = found.unwrap_or((a_min, j_min));
     Limits {
         v_max: v,
-        a_max: a_c.max(TANGENTIAL_SHARE * a_free),
-        j_max: j_c.max(TANGENTIAL_SHARE * j_free),
+        a_max: a_c,
+        j_max: j_c,
         snap_max: machine.max_snap,
     }
 }

@@ -173,10 +173,10 @@ impl Blend {
         let mut b = [[0.0f64; 3]; 3];
         for k in 0..=SAMPLES {
             let g = self.eval(self.length * k as f64 / SAMPLES as f64);
-            for i in 0..3 {
-                b[0][i] = b[0][i].max(g.d1[i].abs());
-                b[1][i] = b[1][i].max(g.d2[i].abs());
-                b[2][i] = b[2][i].max(g.d3[i].abs());
+            for (bound, d) in b.iter_mut().zip([g.d1, g.d2, g.d3]) {
+                for (x, y) in bound.iter_mut().zip(d) {
+                    *x = x.max(y.abs());
+                }
             }
         }
         b

@@ -55,7 +55,13 @@ pub fn curvature_change_speed(dk: Vec3, machine: &Machine) -> f64 {
 /// of the paper's second term), so R ≤ max_cut/tan(β/2).
 pub fn circular_blend(corner: Vec3, d_in: Vec3, d_out: Vec3, tolerance: f64, max_cut: f64) -> Option<Arc> {
     let c = dot(d_in, d_out).clamp(-1.0, 1.0);
-    if 1.0 - c <= COLLINEAR_EPS || c < REVERSAL_COS || !(tolerance > 0.0) || !(max_cut > 0.0) {
+    if 1.0 - c <= COLLINEAR_EPS
+        || c < REVERSAL_COS
+        || tolerance.is_nan()
+        || tolerance <= 0.0
+        || max_cut.is_nan()
+        || max_cut <= 0.0
+    {
         return None;
     }
     let beta = c.acos();

@@ -184,7 +184,7 @@ impl PathBuilder {
             }
         };
         let length = segment.length();
-        if !(length > MIN_LENGTH) {
+        if length.is_nan() || length <= MIN_LENGTH {
             return;
         }
         let limits = match &segment {
@@ -327,7 +327,7 @@ impl PathBuilder {
         feeds: f64,
     ) -> Option<(Segment, f64)> {
         let m = &self.machine;
-        if dot(t_in, t_out) < corner::REVERSAL_COS || !(max_cut > MIN_LENGTH) {
+        if dot(t_in, t_out) < corner::REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
             return None;
         }
         let (segment, v) = if m.corner == CornerMode::Circular {

@@ -381,3 +381,31 @@ fn builder_state_roundtrips() {
     let back: PathBuilder = serde_json::from_str(&json).unwrap();
     assert_eq!(serde_json::to_string(&back).unwrap(), json);
 }
+
+#[test]
+fn blend_speed_matches_eq54_on_gentle_corners() {
+    // For gentle turns the binding limit is the axis jerk at M (eq. 53): at constant path speed
+    // our sampled bound gives the same speed as eq. 54, less the 1 % sampling margin.
+    let m = Machine::default();
+    for deg in [10.0f64, 30.0, 45.0] {
+        let th = deg.to_radians();
+        let end = [10.0 + 10.0 * th.cos(), 10.0 * th.sin(), 0.0];
+        let out = polyline(&m, &[[0.0; 3], [10.0, 0.0, 0.0], end], blend_mode(None));
+        let Segment::Blend(b) = out[1].segment else {
+            panic!()
+        };
+        let (w, q) = (add(b.u, b.v), sub(b.apex(), b.corner));
+        let mut v_lim_j = f64::INFINITY;
+        for i in 0..3 {
+            if w[i].abs() > 1e-9 {
+                let jmax = m.axes[i].max_jerk;
+                v_lim_j = v_lim_j.min(8.0 / (3.0 * w[i].abs()) * (q[i] * q[i] * jmax).cbrt());
+            }
+        }
+        let v = out[1].v_feed / BLEND_SPEED_MARGIN;
+        assert!(
+            (v - v_lim_j).abs() < 1e-3 * v_lim_j,
+            "{deg}: {v} vs eq.54 {v_lim_j}"
+        );
+    }
+}
