@@ -21,6 +21,7 @@ build:
 
 fmu: build
 	./target/release/cnc-motion package --output target/fmu/CncMotion.fmu
+	./target/release/package-machine-structure target/fmu/MachineStructure.fmu
 
 demo: build venv
 	$(PY) examples/demo.py
