@@ -153,13 +153,14 @@ mod tests {
         let w = 10.0;
         for t in [0.01, 0.1, 1.0] {
             let crit = free_response(1.0, w, t);
-            let under = free_response(1.0 - 1e-7, w, t);
-            let over = free_response(1.0 + 1e-7, w, t);
+            let under = free_response(1.0 - 1e-9, w, t);
+            let over = free_response(1.0 + 1e-9, w, t);
             for i in 0..2 {
                 for j in 0..2 {
                     let scale = crit[i][j].abs().max(1e-3);
-                    assert!((crit[i][j] - under[i][j]).abs() < 1e-5 * scale);
-                    assert!((crit[i][j] - over[i][j]).abs() < 1e-5 * scale);
+                    // A change δ of ζ near 1 moves the response by about ω²·2δ·t² (relative).
+                    assert!((crit[i][j] - under[i][j]).abs() < 1e-6 * scale);
+                    assert!((crit[i][j] - over[i][j]).abs() < 1e-6 * scale);
                 }
             }
         }
