@@ -4,7 +4,7 @@ PY     := $(VENV)/bin/python
 PYTHON ?= python3
 CARGO  ?= cargo
 
-.PHONY: all build fmu demo test test-rust test-python bench lint clean venv
+.PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep
 
 all: build
 
@@ -19,18 +19,32 @@ $(VENV)/.installed: requirements.txt
 build:
 	$(CARGO) build --release --workspace --bins --lib
 
-fmu: build
-	./target/release/cnc-motion package --output target/fmu/CncMotion.fmu
+# Both FMUs and the SSP that couples them (examples/cosim.ssp, generated, not committed).
+STRUCTURE_PACKAGE ?= ./target/release/machine-structure package --output target/fmu/MachineStructure.fmu
 
-demo: build venv
+fmu: build venv
+	./target/release/cnc-motion package --output target/fmu/CncMotion.fmu
+	$(STRUCTURE_PACKAGE)
+	$(PY) examples/make_ssp.py
+
+demo: fmu
 	$(PY) examples/demo.py
+	$(PY) examples/cosim.py --out out
+
+cosim: fmu
+	$(PY) examples/cosim.py --master slaves
+	$(PY) examples/cosim.py --master fmpy-ssp
+	$(PY) examples/cosim.py --master libcosim
+
+sweep: fmu
+	$(PY) examples/sweep.py
 
 test: test-rust test-python
 
 test-rust:
 	$(CARGO) test --workspace
 
-test-python: build venv
+test-python: fmu
 	$(PY) -m pytest -q tests/python
 
 bench:
@@ -41,4 +55,4 @@ lint:
 	$(CARGO) clippy --workspace --all-targets -- -D warnings
 
 clean:
-	rm -rf out target/fmu
+	rm -rf out target/fmu examples/cosim.ssp
