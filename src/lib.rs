@@ -12,6 +12,7 @@ pub mod error;
 pub mod feed;
 pub mod gcode;
 pub mod interp;
+pub mod model;
 pub mod package;
 pub mod path;
 pub mod plan;
