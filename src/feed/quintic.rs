@@ -1,4 +1,309 @@
-//! PLACEHOLDER until this law is implemented: delegates to the trapezoid.
+//! Quintic feedrate law (seed 000, Chen/Yeh/Sun 2011): each speed change F_s → F_s + F_d follows
+//! F(t) = F_s + a3 t³ + a4 t⁴ + a5 t⁵ (eq. 2.14) with a = j = 0 at both ends (eq. 2.11–2.17), over the
+//! ramp time t_d of eq. 2.28. A block is ramp – cruise – ramp; the peak speed is lowered by bounded
+//! bisection when the block is too short.
+//!
+//! This file also holds the small bounded solvers and the ramp–cruise–ramp composition shared with
+//! `jerk15` and `mixed57` (every one of those laws has a ramp whose distance grows with the speed change).
 
-pub use super::trapezoid::Trapezoid as Quintic;
-pub use super::trapezoid::{max_entry, max_exit, plan, ramp_distance};
+use super::{BlockRequest, FeedLaw, Kin, Limits};
+use serde::{Deserialize, Serialize};
+
+/// Peak acceleration of a quintic ramp is 1.875·F_d/t_d (eq. 2.24; exactly 15/8, at t = t_d/2).
+pub const ACC_FACTOR: f64 = 1.875;
+/// Peak jerk is 5.773·F_d/t_d² (eq. 2.25, at t = 0.211 t_d). The paper prints 5.773; the exact value is
+/// 10/√3 = 5.77350…, used here so that the jerk limit is never exceeded by the rounding.
+pub const JERK_FACTOR: f64 = 5.773_502_691_896_258;
+
+/// Ramp time of eq. 2.28: t_d = max(1.875 F_d/A, sqrt(5.773 F_d/J)).
+pub fn ramp_time(f_d: f64, lim: &Limits) -> f64 {
+    let f_d = f_d.abs();
+    if f_d == 0.0 {
+        return 0.0;
+    }
+    (ACC_FACTOR * f_d / lim.a_max).max((JERK_FACTOR * f_d / lim.j_max).sqrt())
+}
+
+/// The quintic ramp is point-symmetric, so it covers the mean speed times t_d.
+pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
+    0.5 * (v1 + v2) * ramp_time(v2 - v1, lim)
+}
+
+pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
+    largest_within(v_out.max(0.0), length.max(0.0), |v| ramp_distance(v, v_out, lim))
+}
+
+pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
+    largest_within(v_in.max(0.0), length.max(0.0), |v| ramp_distance(v_in, v, lim))
+}
+
+/// Ramp up v_in → v_peak (t_up), cruise (t_cruise), ramp v_peak → v_end (t_down).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Quintic {
+    pub v_in: f64,
+    pub v_peak: f64,
+    pub v_end: f64,
+    pub t_up: f64,
+    pub t_cruise: f64,
+    pub t_down: f64,
+}
+
+pub fn plan(req: &BlockRequest) -> Quintic {
+    let lim = req.limits;
+    let shape = Shape::solve(req, |v1, v2| ramp_distance(v1, v2, &lim));
+    Quintic {
+        v_in: shape.v_in,
+        v_peak: shape.v_peak,
+        v_end: shape.v_end,
+        t_up: ramp_time(shape.v_peak - shape.v_in, &lim),
+        t_cruise: shape.cruise_time(),
+        t_down: ramp_time(shape.v_end - shape.v_peak, &lim),
+    }
+}
+
+/// State along one quintic ramp v1 → v2 of duration t_d, t from its start (eq. 2.14–2.17 integrated).
+fn ramp_at(v1: f64, v2: f64, t_d: f64, t: f64) -> Kin {
+    if t_d <= 0.0 {
+        return Kin {
+            s: v1 * t,
+            v: v1,
+            a: 0.0,
+            j: 0.0,
+        };
+    }
+    let f_d = v2 - v1;
+    let x = (t / t_d).clamp(0.0, 1.0);
+    let (x2, x3) = (x * x, x * x * x);
+    Kin {
+        // a3 = 10F_d/t_d³, a4 = −15F_d/t_d⁴, a5 = 6F_d/t_d⁵ (eq. 2.17), in the normalised time x = t/t_d.
+        s: v1 * t + f_d * t_d * x2 * x2 * (2.5 - 3.0 * x + x2),
+        v: v1 + f_d * x3 * (10.0 - 15.0 * x + 6.0 * x2),
+        a: f_d / t_d * x2 * (30.0 - 60.0 * x + 30.0 * x2),
+        j: f_d / (t_d * t_d) * x * (60.0 - 180.0 * x + 120.0 * x2),
+    }
+}
+
+impl FeedLaw for Quintic {
+    fn duration(&self) -> f64 {
+        self.t_up + self.t_cruise + self.t_down
+    }
+    fn length(&self) -> f64 {
+        0.5 * (self.v_in + self.v_peak) * self.t_up
+            + self.v_peak * self.t_cruise
+            + 0.5 * (self.v_peak + self.v_end) * self.t_down
+    }
+    fn v_end(&self) -> f64 {
+        self.v_end
+    }
+    fn at(&self, t: f64) -> Kin {
+        let total = self.duration();
+        let t = t.clamp(0.0, total);
+        let t_end = t >= total;
+        if t < self.t_up {
+            return ramp_at(self.v_in, self.v_peak, self.t_up, t);
+        }
+        let s1 = 0.5 * (self.v_in + self.v_peak) * self.t_up;
+        let t = t - self.t_up;
+        if t < self.t_cruise {
+            return Kin {
+                s: s1 + self.v_peak * t,
+                v: self.v_peak,
+                a: 0.0,
+                j: 0.0,
+            };
+        }
+        // At the very end take the ramp's own duration, so that a = 0 exactly despite rounding of t.
+        let t_down = if t_end {
+            self.t_down
+        } else {
+            (t - self.t_cruise).min(self.t_down)
+        };
+        let k = ramp_at(self.v_peak, self.v_end, self.t_down, t_down);
+        Kin {
+            s: s1 + self.v_peak * self.t_cruise + k.s,
+            ..k
+        }
+    }
+    fn phases(&self) -> Vec<f64> {
+        vec![self.t_up, self.t_cruise, self.t_down]
+    }
+}
+
+// ---- Bounded solvers and block composition shared by quintic, jerk15 and mixed57 ----
+
+/// Iterations of every bisection: the bracket reaches adjacent floats long before.
+pub(super) const BISECTIONS: usize = 110;
+
+/// Bisection between `good` (predicate holds) and `bad` (it does not); returns the last good point.
+/// Works whichever way round the two lie; fixed iteration count.
+pub(super) fn bisect(mut good: f64, mut bad: f64, ok: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..BISECTIONS {
+        let mid = 0.5 * (good + bad);
+        if mid == good || mid == bad {
+            break;
+        }
+        if ok(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    good
+}
+
+/// Largest v ≥ v0 with dist(v) ≤ length, for dist increasing in v and dist(v0) ≤ length.
+/// The bracket grows geometrically a bounded number of times, then bisection.
+pub(super) fn largest_within(v0: f64, length: f64, dist: impl Fn(f64) -> f64) -> f64 {
+    let mut good = v0;
+    let mut step = v0.max(1e-3);
+    for _ in 0..80 {
+        let hi = v0 + step;
+        let fits = dist(hi) <= length; // NaN counts as "does not fit"
+        if !fits {
+            return bisect(good, hi, |v| dist(v) <= length);
+        }
+        good = hi;
+        step *= 2.0;
+    }
+    good
+}
+
+/// Speeds of a ramp–cruise–ramp block and the distance left for the cruise at v_peak.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Shape {
+    pub v_in: f64,
+    pub v_peak: f64,
+    pub v_end: f64,
+    pub cruise: f64,
+}
+
+impl Shape {
+    /// `dist(v1, v2)` is the law's fastest ramp distance. If v_out cannot be reached the block is one
+    /// ramp towards it, to the closest speed whose ramp fits (the few ulps left are cruised).
+    /// Otherwise the peak is the feed (capped by v_max) or, when too long, the largest peak that fits.
+    pub fn solve(req: &BlockRequest, dist: impl Fn(f64, f64) -> f64) -> Shape {
+        let l = req.length.max(0.0);
+        let (v_in, v_out) = (req.v_in.max(0.0), req.v_out.max(0.0));
+        let reachable = dist(v_in, v_out) <= l; // NaN counts as unreachable
+        if !reachable {
+            let v_end = bisect(v_in, v_out, |v| dist(v_in, v) <= l);
+            let v_peak = v_in.max(v_end);
+            return Shape {
+                v_in,
+                v_peak,
+                v_end,
+                cruise: l - dist(v_in, v_end),
+            };
+        }
+        let v_cap = req.v_feed.min(req.limits.v_max).max(v_in).max(v_out);
+        let total = |v: f64| dist(v_in, v) + dist(v, v_out);
+        let v_peak = if total(v_cap) <= l {
+            v_cap
+        } else {
+            bisect(v_in.max(v_out), v_cap, |v| total(v) <= l)
+        };
+        Shape {
+            v_in,
+            v_peak,
+            v_end: v_out,
+            cruise: l - total(v_peak),
+        }
+    }
+
+    pub fn cruise_time(&self) -> f64 {
+        if self.v_peak > 0.0 {
+            self.cruise.max(0.0) / self.v_peak
+        } else {
+            0.0
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constants_from_sampled_curve() {
+        // Sample one ramp F_d = 1, t_d = 1 finely: the peaks are the factors of eq. 2.24 and 2.25.
+        let n = 1_000_000;
+        let (mut a_max, mut j_max, mut t_a, mut t_j) = (0.0f64, 0.0f64, 0.0, 0.0);
+        for i in 0..=n {
+            let t = i as f64 / n as f64;
+            let k = ramp_at(0.0, 1.0, 1.0, t);
+            if k.a > a_max {
+                (a_max, t_a) = (k.a, t);
+            }
+            if k.j > j_max {
+                (j_max, t_j) = (k.j, t);
+            }
+        }
+        assert!((a_max - 1.875).abs() < 1e-9, "{a_max}");
+        assert!((t_a - 0.5).abs() < 1e-6); // eq. 2.22
+                                           // 5.773 as printed (the paper truncates 5.77350…), and the exact 10/√3 we use.
+        assert!((j_max - 5.773).abs() < 1e-3, "{j_max}");
+        assert!((j_max - JERK_FACTOR).abs() < 1e-9);
+        assert!((t_j - 0.211).abs() < 1e-3, "{t_j}"); // eq. 2.23
+        let end = ramp_at(0.0, 1.0, 1.0, 1.0);
+        assert!((end.v - 1.0).abs() < 1e-15 && end.a.abs() < 1e-15 && (end.s - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn ramp_time_meets_limits() {
+        // Seed 000 test: A = 12.5 m/s², J = 25000 m/s³ (as printed), feed 800 mm/min.
+        let lim = Limits {
+            v_max: 1.0,
+            a_max: 12.5,
+            j_max: 25_000.0,
+            snap_max: 1e9,
+        };
+        let f_d = 0.8 / 60.0;
+        let t_d = ramp_time(f_d, &lim);
+        assert!((t_d - 1.875 * f_d / 12.5).abs() < 1e-15); // acceleration bound
+        let p = plan(&BlockRequest {
+            length: 0.01,
+            v_in: 0.0,
+            v_out: 0.0,
+            v_feed: f_d,
+            limits: lim,
+        });
+        assert!((p.t_up - t_d).abs() < 1e-15 && p.t_cruise > 0.0);
+        let peak_a = (0..=1000)
+            .map(|i| p.at(p.t_up * i as f64 / 1000.0).a)
+            .fold(0.0, f64::max);
+        assert!(peak_a <= 12.5 && peak_a > 12.5 * 0.9999);
+    }
+
+    #[test]
+    fn general_block_and_short_block() {
+        let lim = Limits {
+            v_max: 1.0,
+            a_max: 2.0,
+            j_max: 60.0,
+            snap_max: 6000.0,
+        };
+        let req = BlockRequest {
+            length: 0.003,
+            v_in: 0.05,
+            v_out: 0.02,
+            v_feed: 0.5,
+            limits: lim,
+        };
+        let p = plan(&req);
+        assert!(p.v_peak < 0.5 && p.v_peak > 0.05);
+        let end = p.at(p.duration());
+        assert!((end.s - 0.003).abs() < 1e-15 && (end.v - 0.02).abs() < 1e-15 && end.a.abs() < 1e-15);
+        // v_out unreachable: one ramp, exit speed reported, its ramp is exactly the length.
+        let p = plan(&BlockRequest {
+            length: 1e-4,
+            v_in: 0.0,
+            v_out: 0.3,
+            ..req
+        });
+        assert!(p.v_end < 0.3 && (ramp_distance(0.0, p.v_end, &lim) - 1e-4).abs() < 1e-15);
+        assert!((p.at(p.duration()).s - 1e-4).abs() < 1e-15);
+        assert!((max_exit(1e-4, 0.0, &lim) - p.v_end).abs() < 1e-12);
+        let v = max_entry(0.01, 0.1, &lim);
+        assert!((ramp_distance(v, 0.1, &lim) - 0.01).abs() < 1e-14);
+    }
+}

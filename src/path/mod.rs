@@ -2,12 +2,29 @@
 //! length, its derivatives with respect to the path parameter s, and its path-level limits
 //! projected from the axis limits. Corners are decided here (exact stop, seed-003 corner feed,
 //! circular blend, quintic transition), so the planner sees only segments and junction speeds.
+//!
+//! Corner rules (`PathBuilder`): G61 (on either block) or `corner = exact_stop` stops; collinear
+//! lines pass at full speed; between two lines `acceleration_period` caps the junction at the
+//! seed-003 F_c, `circular` inserts the eq. 8 arc and `polynomial` the eq. 25–52 quintic, both
+//! traversed at one speed. Junctions involving an arc: tangent-continuous → eq. 10 curvature-change
+//! speed; otherwise the seed-003 corner feed (an arc cannot be trimmed, so no transition is
+//! inserted). Dwell and stop blocks stop the path.
 
 use crate::config::{CornerMode, Machine};
 use crate::feed::Limits;
 use crate::gcode::{Block, Motion, PathMode};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
+
+mod arc;
+mod blend;
+mod corner;
+mod line;
+
+pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, plane_axes, Arc};
+pub use blend::Blend;
+pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed};
+pub use line::{line_limits, Line};
 
 /// A point of a segment and its derivatives with respect to the path parameter s:
 /// axis velocity = d1·v, acceleration = d2·v² + d1·a, jerk = d3·v³ + 3·d2·v·a + d1·j.
@@ -19,52 +36,11 @@ pub struct Geo {
     pub d3: Vec3,
 }
 
-/// Straight line from `start` to `end`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Line {
-    pub start: Vec3,
-    pub end: Vec3,
-}
-
-impl Line {
-    pub fn length(&self) -> f64 {
-        norm(sub(self.end, self.start))
-    }
-    /// Unit direction (zero for a zero-length line).
-    pub fn direction(&self) -> Vec3 {
-        let l = self.length();
-        if l > 0.0 {
-            scale(sub(self.end, self.start), 1.0 / l)
-        } else {
-            [0.0; 3]
-        }
-    }
-    pub fn eval(&self, s: f64) -> Geo {
-        let u = self.direction();
-        Geo {
-            p: add(self.start, scale(u, s)),
-            d1: u,
-            ..Geo::default()
-        }
-    }
-}
-
-/// PLACEHOLDER arc record until the geometry module lands.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Arc {
-    pub chord: Line,
-}
-
-/// PLACEHOLDER corner-transition record until the geometry module lands.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Blend {
-    pub chord: Line,
-}
-
 /// One piece of the path, parameterised by s ∈ [0, length()].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Segment {
     Line(Line),
+    /// Arc or helix (G2/G3, or a circular corner blend).
     Arc(Arc),
     /// Corner transition, traversed at one speed (see `PathBlock::constant_speed`).
     Blend(Blend),
@@ -79,16 +55,17 @@ impl Segment {
     pub fn length(&self) -> f64 {
         match self {
             Segment::Line(l) => l.length(),
-            Segment::Arc(a) => a.chord.length(),
-            Segment::Blend(b) => b.chord.length(),
+            Segment::Arc(a) => a.length(),
+            Segment::Blend(b) => b.length,
             Segment::Dwell { .. } => 0.0,
         }
     }
+    /// Point and derivatives at arc length s (clamped to the segment).
     pub fn eval(&self, s: f64) -> Geo {
         match self {
             Segment::Line(l) => l.eval(s),
-            Segment::Arc(a) => a.chord.eval(s),
-            Segment::Blend(b) => b.chord.eval(s),
+            Segment::Arc(a) => a.eval(s),
+            Segment::Blend(b) => b.eval(s),
             Segment::Dwell { at, .. } => Geo {
                 p: *at,
                 ..Geo::default()
@@ -96,13 +73,18 @@ impl Segment {
         }
     }
     pub fn start(&self) -> Vec3 {
-        self.eval(0.0).p
+        match self {
+            Segment::Line(l) => l.start,
+            Segment::Blend(b) => b.start(),
+            _ => self.eval(0.0).p,
+        }
     }
+    /// The exact end point (the programmed one for lines and arcs).
     pub fn end(&self) -> Vec3 {
         match self {
             Segment::Line(l) => l.end,
-            Segment::Arc(a) => a.chord.end,
-            Segment::Blend(b) => b.chord.end,
+            Segment::Arc(a) => a.end,
+            Segment::Blend(b) => b.end(),
             Segment::Dwell { at, .. } => *at,
         }
     }
@@ -124,30 +106,18 @@ pub struct PathBlock {
     pub constant_speed: bool,
 }
 
-/// Seed 004 eq. 11: on a line of unit direction u, axis i moves at u_i·v, so the path limits
-/// are the smallest axis limit divided by |u_i| — the slowest axis sets the pace, all in phase.
-pub fn line_limits(u: Vec3, machine: &Machine) -> Limits {
-    let mut lim = Limits {
-        v_max: machine.max_feed,
-        a_max: f64::INFINITY,
-        j_max: f64::INFINITY,
-        snap_max: machine.max_snap,
-    };
-    for (ui, ax) in u.iter().zip(&machine.axes) {
-        let k = ui.abs();
-        if k > 1e-12 {
-            lim.v_max = lim.v_max.min(ax.max_velocity / k);
-            lim.a_max = lim.a_max.min(ax.max_acceleration / k);
-            lim.j_max = lim.j_max.min(ax.max_jerk / k);
-        }
-    }
-    if let Some(a) = machine.max_path_acceleration {
-        lim.a_max = lim.a_max.min(a);
-    }
-    if let Some(j) = machine.max_path_jerk {
-        lim.j_max = lim.j_max.min(j);
-    }
-    lim
+/// Moves shorter than this (m) are dropped.
+const MIN_LENGTH: f64 = 1e-12;
+/// Margin on the sampled derivative bounds of a quintic transition.
+const BLEND_SPEED_MARGIN: f64 = 0.99;
+
+/// The segment held back, with what the next corner needs to know.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct Held {
+    block: PathBlock,
+    /// Length as programmed, before any trimming (a transition takes at most half of it).
+    programmed: f64,
+    mode: PathMode,
 }
 
 /// Turns blocks into planned-ready segments. Holds back one segment so that the corner after it
@@ -155,7 +125,7 @@ pub fn line_limits(u: Vec3, machine: &Machine) -> Limits {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PathBuilder {
     machine: Machine,
-    held: Option<PathBlock>,
+    held: Option<Held>,
 }
 
 impl PathBuilder {
@@ -167,52 +137,211 @@ impl PathBuilder {
     }
 
     /// Take one block; push the segments that are now final onto `out`.
-    // PLACEHOLDER: lines only, exact stop at every direction change.
     pub fn push(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
-        let (to, feed) = match block.motion {
-            Motion::Rapid { to } => (to, self.machine.max_feed),
-            Motion::Linear { to } => (to, block.feed),
-            _ => return,
+        let (segment, feed) = match block.motion {
+            Motion::Rapid { to } => (
+                Segment::Line(Line {
+                    start: block.from,
+                    end: to,
+                }),
+                self.machine.max_feed,
+            ),
+            Motion::Linear { to } => (
+                Segment::Line(Line {
+                    start: block.from,
+                    end: to,
+                }),
+                block.feed,
+            ),
+            Motion::Arc {
+                to,
+                center,
+                plane,
+                clockwise,
+                turns,
+            } => match Arc::from_gcode(block.from, to, center, plane, clockwise, turns) {
+                Some(a) => (Segment::Arc(a), block.feed),
+                None => return,
+            },
+            Motion::Dwell { seconds } => {
+                self.release(0.0, out);
+                out.push(PathBlock {
+                    line: block.line,
+                    segment: Segment::Dwell {
+                        at: block.from,
+                        seconds: seconds.max(0.0),
+                    },
+                    v_feed: 0.0,
+                    limits: self.rest_limits(),
+                    v_end_max: 0.0,
+                    constant_speed: false,
+                });
+                return;
+            }
+            Motion::Stop(_) => {
+                self.release(0.0, out);
+                return;
+            }
         };
-        let line = Line {
-            start: block.from,
-            end: to,
-        };
-        if line.length() <= 0.0 {
+        let length = segment.length();
+        if length.is_nan() || length <= MIN_LENGTH {
             return;
         }
-        let limits = line_limits(line.direction(), &self.machine);
-        let next = PathBlock {
-            line: block.line,
-            segment: Segment::Line(line),
-            v_feed: feed.min(limits.v_max),
-            limits,
-            v_end_max: 0.0,
-            constant_speed: false,
+        let limits = match &segment {
+            Segment::Line(l) => line_limits(l.direction(), &self.machine),
+            Segment::Arc(a) => arc_limits(a, &self.machine),
+            _ => self.rest_limits(),
         };
-        if let Some(mut held) = self.held.take() {
-            let collinear = match held.segment {
-                Segment::Line(h) => dot(h.direction(), line.direction()) > 1.0 - 1e-12,
-                _ => false,
-            };
-            let exact = matches!(block.path_mode, PathMode::ExactStop)
-                || self.machine.corner == CornerMode::ExactStop;
-            held.v_end_max = if collinear && !exact {
-                held.v_feed.min(next.v_feed)
-            } else {
-                0.0
-            };
-            out.push(held);
+        let next = Held {
+            block: PathBlock {
+                line: block.line,
+                segment,
+                v_feed: feed.max(0.0).min(limits.v_max),
+                limits,
+                v_end_max: 0.0,
+                constant_speed: false,
+            },
+            programmed: length,
+            mode: block.path_mode,
+        };
+        match self.held.take() {
+            Some(held) => self.corner(held, next, out),
+            None => self.held = Some(next),
         }
-        self.held = Some(next);
     }
 
     /// End of program: release the held segment, stopping at its end.
     pub fn finish(&mut self, out: &mut Vec<PathBlock>) {
+        self.release(0.0, out);
+    }
+
+    fn release(&mut self, v_end_max: f64, out: &mut Vec<PathBlock>) {
         if let Some(mut held) = self.held.take() {
-            held.v_end_max = 0.0;
-            out.push(held);
+            held.block.v_end_max = v_end_max;
+            out.push(held.block);
         }
+    }
+
+    /// Limits for blocks that do not move (dwell): the slowest axis.
+    fn rest_limits(&self) -> Limits {
+        let m = &self.machine;
+        Limits {
+            v_max: m.max_feed,
+            a_max: m
+                .axes
+                .iter()
+                .map(|a| a.max_acceleration)
+                .fold(f64::INFINITY, f64::min),
+            j_max: m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min),
+            snap_max: m.max_snap,
+        }
+    }
+
+    /// Decide the junction between `held` and `next`; emit `held` (and a transition if any).
+    fn corner(&mut self, mut held: Held, mut next: Held, out: &mut Vec<PathBlock>) {
+        let m = &self.machine;
+        let exact = m.corner == CornerMode::ExactStop
+            || matches!(held.mode, PathMode::ExactStop)
+            || matches!(next.mode, PathMode::ExactStop);
+        let g_in = held.block.segment.eval(held.block.segment.length());
+        let g_out = next.block.segment.eval(0.0);
+        let (t_in, t_out) = (unit(g_in.d1), unit(g_out.d1));
+        let cos = dot(t_in, t_out);
+        let feeds = held.block.v_feed.min(next.block.v_feed);
+        let lines = match (&held.block.segment, &next.block.segment) {
+            (Segment::Line(h), Segment::Line(n)) => Some((*h, *n)),
+            _ => None,
+        };
+        let v_end_max = if exact {
+            0.0
+        } else if let Some((h, n)) = lines {
+            if 1.0 - cos <= corner::COLLINEAR_EPS {
+                feeds
+            } else {
+                match m.corner {
+                    CornerMode::ExactStop => 0.0,
+                    CornerMode::AccelerationPeriod => corner_feed(t_in, t_out, m).min(feeds),
+                    CornerMode::Circular | CornerMode::Polynomial => {
+                        let tol = match held.mode {
+                            PathMode::Blend {
+                                tolerance: Some(t), ..
+                            } if t > 0.0 => t,
+                            _ => m.path_tolerance,
+                        };
+                        let max_cut = (0.5 * held.programmed.min(next.programmed)).min(h.length());
+                        let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds);
+                        match trans {
+                            Some((segment, v)) => {
+                                held.block.segment = Segment::Line(Line {
+                                    start: h.start,
+                                    end: segment.start(),
+                                });
+                                next.block.segment = Segment::Line(Line {
+                                    start: segment.end(),
+                                    end: n.end,
+                                });
+                                held.block.v_end_max = v;
+                                if held.block.segment.length() > MIN_LENGTH {
+                                    out.push(held.block);
+                                }
+                                let limits = Limits {
+                                    v_max: v,
+                                    a_max: held.block.limits.a_max.min(next.block.limits.a_max),
+                                    j_max: held.block.limits.j_max.min(next.block.limits.j_max),
+                                    snap_max: m.max_snap,
+                                };
+                                out.push(PathBlock {
+                                    line: held.block.line,
+                                    segment,
+                                    v_feed: v,
+                                    limits,
+                                    v_end_max: v,
+                                    constant_speed: true,
+                                });
+                                self.held = Some(next);
+                                return;
+                            }
+                            None => 0.0,
+                        }
+                    }
+                }
+            }
+        } else if 1.0 - cos <= corner::TANGENT_EPS {
+            curvature_change_speed(sub(g_out.d2, g_in.d2), m).min(feeds)
+        } else {
+            corner_feed(t_in, t_out, m).min(feeds)
+        };
+        held.block.v_end_max = v_end_max;
+        out.push(held.block);
+        self.held = Some(next);
+    }
+
+    /// The corner transition of the machine's mode and its constant speed, or None (stop).
+    fn transition(
+        &self,
+        corner: Vec3,
+        t_in: Vec3,
+        t_out: Vec3,
+        tol: f64,
+        max_cut: f64,
+        feeds: f64,
+    ) -> Option<(Segment, f64)> {
+        let m = &self.machine;
+        if dot(t_in, t_out) < corner::REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
+            return None;
+        }
+        let (segment, v) = if m.corner == CornerMode::Circular {
+            let arc = circular_blend(corner, t_in, t_out, tol, max_cut)?;
+            (Segment::Arc(arc), circular_blend_speed(&arc, m))
+        } else {
+            // Eq. 52 with the half-length rule of §3.5: L ≤ half of either line.
+            let half = Blend::half_for_tolerance(t_in, t_out, tol).min(max_cut);
+            let b = Blend::new(corner, t_in, t_out, half);
+            let v = BLEND_SPEED_MARGIN * constant_speed_limit(&b.derivative_bounds(), m);
+            (Segment::Blend(b), v)
+        };
+        let v = v.min(feeds);
+        (v > 0.0 && v.is_finite()).then_some((segment, v))
     }
 }
 
@@ -231,3 +360,22 @@ pub fn dot(a: Vec3, b: Vec3) -> f64 {
 pub fn norm(a: Vec3) -> f64 {
     dot(a, a).sqrt()
 }
+pub fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+/// a/|a|, zero for a zero vector.
+pub fn unit(a: Vec3) -> Vec3 {
+    let n = norm(a);
+    if n > 0.0 {
+        scale(a, 1.0 / n)
+    } else {
+        [0.0; 3]
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,1 +1,148 @@
-pub fn placeholder() {}
+//! A generic FMI 2.0 Co-Simulation slave: the C ABI, the state machine, argument and rule checks,
+//! logging, FMU state and serialization, and the modelDescription.xml writer. A model plugs in
+//! through [`Model`] and one call of [`export_fmi2!`]; nothing here knows a model's variables
+//! except through the table it describes itself with.
+
+pub mod abi;
+pub mod instance;
+pub mod package;
+pub mod uri;
+pub mod xml;
+
+use std::path::Path;
+
+/// FMI 2.0 scalar types; enumerations carry the index of their type definition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Type {
+    Real,
+    Integer,
+    Boolean,
+    String,
+    Enumeration(usize),
+}
+
+impl Type {
+    /// The get/set family the type belongs to (enumerations are read as integers).
+    pub fn family(self) -> Type {
+        match self {
+            Type::Enumeration(_) => Type::Integer,
+            t => t,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Causality {
+    Parameter,
+    CalculatedParameter,
+    Input,
+    Output,
+    Local,
+    Independent,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Variability {
+    Constant,
+    Fixed,
+    Tunable,
+    Discrete,
+    Continuous,
+}
+
+/// A value of any type (start values, state of the table).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Real(f64),
+    Integer(i32),
+    Boolean(bool),
+    String(String),
+}
+
+/// One variable as the importer sees it.
+#[derive(Clone, Debug)]
+pub struct VariableInfo {
+    pub name: String,
+    pub value_reference: u32,
+    pub kind: Type,
+    pub causality: Causality,
+    pub variability: Variability,
+    pub unit: Option<String>,
+    pub display_unit: Option<String>,
+    pub description: String,
+}
+
+impl VariableInfo {
+    /// Parameters and inputs carry a start value (initial = exact); outputs are calculated.
+    pub fn has_start(&self) -> bool {
+        matches!(self.causality, Causality::Parameter | Causality::Input)
+    }
+}
+
+/// An enumeration type: name and items (name, description), values 1…n.
+#[derive(Clone, Debug)]
+pub struct EnumerationType {
+    pub name: String,
+    pub items: Vec<(String, String)>,
+}
+
+/// A display unit of an SI unit: value_display = factor · value + offset.
+#[derive(Clone, Debug)]
+pub struct DisplayUnit {
+    pub name: String,
+    pub factor: f64,
+    pub offset: f64,
+}
+
+/// A unit with its SI base-unit exponents (kg, m, s, A, K, mol, cd, rad).
+#[derive(Clone, Debug)]
+pub struct UnitDefinition {
+    pub name: String,
+    pub base: [i32; 8],
+    pub display: Vec<DisplayUnit>,
+}
+
+/// What the model tells the layer (and the XML) about itself.
+#[derive(Clone, Debug)]
+pub struct ModelInfo {
+    pub model_name: String,
+    pub model_identifier: String,
+    pub guid: String,
+    pub description: String,
+    pub version: String,
+    pub variables: Vec<VariableInfo>,
+    pub enumerations: Vec<EnumerationType>,
+    pub units: Vec<UnitDefinition>,
+    pub log_categories: Vec<(String, String)>,
+    /// DefaultExperiment: start, stop, tolerance, step size.
+    pub default_experiment: (f64, f64, f64, f64),
+}
+
+/// A model behind the generic layer. Indices are positions in `info().variables`.
+pub trait Model: Clone + Send + 'static {
+    /// The description, built once.
+    fn info() -> &'static ModelInfo;
+    /// A model at its start values; `resources` is the FMU's resources folder, if given.
+    fn new(resources: Option<&Path>) -> Self;
+    fn get(&self, index: usize) -> Value;
+    /// Set a variable; refusals come back as a message for the log.
+    fn set(&mut self, index: usize, value: Value) -> Result<(), String>;
+    /// End of initialization: check parameters, load what they name.
+    fn exit_initialization(&mut self) -> Result<(), String>;
+    /// Advance from the current time by h > 0.
+    fn do_step(&mut self, h: f64) -> Result<(), String>;
+    /// Whole state as bytes (versioned by the model), and back.
+    fn serialize(&self) -> Vec<u8>;
+    fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String>;
+}
+
+/// Reads `(variable name, value)` pairs into a model through the same path as fmi2Set*, for tests
+/// and packaging tools.
+pub fn set_by_name<M: Model>(model: &mut M, name: &str, value: Value) -> Result<(), String> {
+    let i = M::info()
+        .variables
+        .iter()
+        .position(|v| v.name == name)
+        .ok_or_else(|| format!("no variable '{name}'"))?;
+    model.set(i, value)
+}

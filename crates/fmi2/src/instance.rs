@@ -1,0 +1,304 @@
+//! One FMU instance: the FMI 2.0 Co-Simulation state machine, the rules on which variable may be
+//! set when, the logger, FMU states and their serialization. Plain Rust; abi.rs does the C side.
+
+use crate::{Causality, Model, Type, Value, Variability};
+use std::ffi::{c_char, c_int, c_void, CString};
+use std::path::PathBuf;
+
+/// fmi2Status values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub enum Status {
+    Ok = 0,
+    Warning = 1,
+    Discard = 2,
+    Error = 3,
+    Fatal = 4,
+    Pending = 5,
+}
+
+/// The logger callback of fmi2CallbackFunctions (variadic in C; we pass a finished message).
+pub type LoggerFn =
+    unsafe extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char, ...);
+
+/// States of a co-simulation slave (FMI 2.0, section 4.2.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum State {
+    Instantiated,
+    InitializationMode,
+    StepComplete,
+    StepFailed,
+    Terminated,
+    Error,
+    Fatal,
+}
+
+/// Log categories of every FMU built on this layer (declared in the XML).
+pub const LOG_CATEGORIES: [(&str, &str); 4] = [
+    ("logEvents", "initialization, steps and state changes"),
+    ("logStatusWarning", "warnings"),
+    (
+        "logStatusError",
+        "errors: bad calls, bad arguments, model failures",
+    ),
+    ("logAll", "everything"),
+];
+
+/// A saved FMU state (fmi2GetFMUstate): a deep copy of the model and the slave's time.
+pub struct Snapshot<M> {
+    pub model: M,
+    pub time: f64,
+    pub state: State,
+}
+
+const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x01";
+
+pub struct Instance<M: Model> {
+    pub name: CString,
+    pub model: M,
+    pub state: State,
+    pub time: f64,
+    pub stop_time: Option<f64>,
+    pub resources: Option<PathBuf>,
+    logger: Option<LoggerFn>,
+    env: *mut c_void,
+    logging_on: bool,
+    categories: [bool; LOG_CATEGORIES.len()],
+    /// Strings handed out by fmi2GetString, valid until the next call.
+    pub strings: Vec<CString>,
+    /// FMU states handed out and not yet freed (checked on Set/Free).
+    pub snapshots: Vec<usize>,
+}
+
+// The raw environment pointer belongs to the importer, which may move instances between threads.
+unsafe impl<M: Model> Send for Instance<M> {}
+
+impl<M: Model> Instance<M> {
+    pub fn new(
+        name: &str,
+        resources: Option<PathBuf>,
+        logger: Option<LoggerFn>,
+        env: *mut c_void,
+        logging_on: bool,
+    ) -> Self {
+        Instance {
+            name: CString::new(name.replace('\0', "")).unwrap_or_default(),
+            model: M::new(resources.as_deref()),
+            state: State::Instantiated,
+            time: 0.0,
+            stop_time: None,
+            resources,
+            logger,
+            env,
+            logging_on,
+            categories: [true; LOG_CATEGORIES.len()],
+            strings: Vec::new(),
+            snapshots: Vec::new(),
+        }
+    }
+
+    /// Send a message to the importer's logger, if its category is on. Errors are always sent.
+    pub fn log(&self, status: Status, category: usize, message: &str) {
+        let Some(logger) = self.logger else { return };
+        let always = status == Status::Error || status == Status::Fatal;
+        if !always && !(self.logging_on && (self.categories[category] || self.categories[3])) {
+            return;
+        }
+        // The logger formats its message like printf: escape '%'.
+        let text = CString::new(message.replace('\0', "").replace('%', "%%")).unwrap_or_default();
+        let cat = CString::new(LOG_CATEGORIES[category].0).unwrap_or_default();
+        // SAFETY: the importer gave this callback and environment for exactly this use.
+        unsafe {
+            logger(
+                self.env,
+                self.name.as_ptr(),
+                status as c_int,
+                cat.as_ptr(),
+                text.as_ptr(),
+            )
+        };
+    }
+
+    pub fn error(&self, message: &str) -> Status {
+        self.log(Status::Error, 2, message);
+        Status::Error
+    }
+
+    pub fn event(&self, message: &str) {
+        self.log(Status::Ok, 0, message);
+    }
+
+    /// fmi2SetDebugLogging: all categories for an empty list, else exactly those named.
+    pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Status {
+        if categories.is_empty() {
+            self.categories = [true; LOG_CATEGORIES.len()];
+        } else {
+            let mut set = [false; LOG_CATEGORIES.len()];
+            for c in categories {
+                match LOG_CATEGORIES.iter().position(|(n, _)| n == c) {
+                    Some(i) => set[i] = true,
+                    None => return self.error(&format!("fmi2SetDebugLogging: unknown log category '{c}'")),
+                }
+            }
+            self.categories = set;
+        }
+        self.logging_on = on;
+        Status::Ok
+    }
+
+    /// Refuse a call in a state where the standard does not allow it.
+    pub fn require(&self, function: &str, allowed: &[State]) -> Result<(), Status> {
+        if allowed.contains(&self.state) {
+            Ok(())
+        } else {
+            Err(self.error(&format!("{function}: not allowed in state {:?}", self.state)))
+        }
+    }
+
+    /// Index of the variable with this value reference and type family.
+    pub fn lookup(&self, function: &str, vr: u32, family: Type) -> Result<usize, Status> {
+        let vars = &M::info().variables;
+        // Value references are 1…n in table order; fall back to a search for other numberings.
+        let i = (vr as usize)
+            .checked_sub(1)
+            .filter(|&i| i < vars.len() && vars[i].value_reference == vr)
+            .or_else(|| vars.iter().position(|v| v.value_reference == vr));
+        let Some(i) = i else {
+            return Err(self.error(&format!("{function}: unknown value reference {vr}")));
+        };
+        if vars[i].kind.family() != family {
+            let msg = format!(
+                "{function}: variable '{}' (vr {vr}) is of type {:?}",
+                vars[i].name, vars[i].kind
+            );
+            return Err(self.error(&msg));
+        }
+        Ok(i)
+    }
+
+    pub fn get(&mut self, function: &str, vr: u32, family: Type) -> Result<Value, Status> {
+        self.require(
+            function,
+            &[
+                State::InitializationMode,
+                State::StepComplete,
+                State::StepFailed,
+                State::Terminated,
+                State::Error,
+            ],
+        )?;
+        let i = self.lookup(function, vr, family)?;
+        Ok(self.model.get(i))
+    }
+
+    /// Set with the rules of FMI 2.0: before initialization ends, variables with a start value;
+    /// after, inputs and tunable parameters only.
+    pub fn set(&mut self, function: &str, vr: u32, family: Type, value: Value) -> Result<(), Status> {
+        self.require(
+            function,
+            &[
+                State::Instantiated,
+                State::InitializationMode,
+                State::StepComplete,
+            ],
+        )?;
+        let i = self.lookup(function, vr, family)?;
+        let v = &M::info().variables[i];
+        let allowed = match self.state {
+            State::Instantiated | State::InitializationMode => {
+                v.has_start() && v.variability != Variability::Constant
+            }
+            _ => {
+                v.causality == Causality::Input
+                    || (v.causality == Causality::Parameter && v.variability == Variability::Tunable)
+            }
+        };
+        if !allowed {
+            let msg = format!(
+                "{function}: '{}' ({:?}, {:?}) cannot be set in state {:?}",
+                v.name, v.causality, v.variability, self.state
+            );
+            return Err(self.error(&msg));
+        }
+        if let Value::Integer(n) = value {
+            if let Type::Enumeration(e) = v.kind {
+                let items = M::info().enumerations[e].items.len() as i32;
+                if !(1..=items).contains(&n) {
+                    return Err(self.error(&format!(
+                        "{function}: '{}' = {n} is not an item 1 … {items}",
+                        v.name
+                    )));
+                }
+            }
+        }
+        let name = v.name.clone();
+        self.model
+            .set(i, value)
+            .map_err(|m| self.error(&format!("{function}: '{name}': {m}")))
+    }
+
+    pub fn snapshot(&self) -> Snapshot<M> {
+        Snapshot {
+            model: self.model.clone(),
+            time: self.time,
+            state: self.state,
+        }
+    }
+
+    pub fn restore(&mut self, s: &Snapshot<M>) {
+        self.model = s.model.clone();
+        self.time = s.time;
+        self.state = s.state;
+    }
+
+    /// Versioned, size-checked bytes: magic, GUID, time, state, model bytes.
+    pub fn serialize(s: &Snapshot<M>) -> Vec<u8> {
+        let guid = M::info().guid.as_bytes();
+        let body = s.model.serialize();
+        let mut out = Vec::with_capacity(32 + guid.len() + body.len());
+        out.extend_from_slice(SERIAL_MAGIC);
+        out.extend_from_slice(&(guid.len() as u32).to_le_bytes());
+        out.extend_from_slice(guid);
+        out.extend_from_slice(&s.time.to_le_bytes());
+        out.push(s.state as u8);
+        out.extend_from_slice(&(body.len() as u64).to_le_bytes());
+        out.extend_from_slice(&body);
+        out
+    }
+
+    pub fn deserialize(&self, bytes: &[u8]) -> Result<Snapshot<M>, String> {
+        let mut r = bytes;
+        let mut take = |n: usize| -> Result<&[u8], String> {
+            if r.len() < n {
+                return Err(format!("serialized FMU state truncated ({} bytes)", bytes.len()));
+            }
+            let (a, b) = r.split_at(n);
+            r = b;
+            Ok(a)
+        };
+        if take(8)? != SERIAL_MAGIC {
+            return Err("not a serialized state of this FMU (magic/version mismatch)".into());
+        }
+        let n = u32::from_le_bytes(take(4)?.try_into().map_err(|_| "bad length")?) as usize;
+        if take(n)? != M::info().guid.as_bytes() {
+            return Err("serialized FMU state belongs to another model (GUID mismatch)".into());
+        }
+        let time = f64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad time")?);
+        let state = match take(1)?[0] {
+            0 => State::Instantiated,
+            1 => State::InitializationMode,
+            2 => State::StepComplete,
+            3 => State::StepFailed,
+            4 => State::Terminated,
+            _ => return Err("serialized FMU state has an invalid slave state".into()),
+        };
+        let len = u64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad length")?) as usize;
+        let body = take(len)?;
+        if !r.is_empty() {
+            return Err(format!("serialized FMU state has {} trailing bytes", r.len()));
+        }
+        let mut model = self.model.clone();
+        model.deserialize(body)?;
+        Ok(Snapshot { model, time, state })
+    }
+}

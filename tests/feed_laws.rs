@@ -1,0 +1,275 @@
+//! Properties every ramp–cruise–ramp law (quintic, jerk15, mixed57) must hold on arbitrary blocks:
+//! limits, exact end point, v ≥ 0, a = 0 at both ends, and never faster than the time-optimal
+//! 7-phase law on rest-to-rest blocks.
+
+use cnc_motion::feed::{self, BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
+use proptest::prelude::*;
+
+const KINDS: [ProfileKind; 3] = [ProfileKind::Quintic, ProfileKind::Jerk15, ProfileKind::Mixed57];
+
+/// Time-optimal rest-to-rest duration of the 7-phase law (a, j limited; independent of scurve7.rs):
+/// a ramp 0 → v lasts v/A + A/J (A reached) or 2·sqrt(v/J), and covers v/2 times that.
+fn scurve7_rest_to_rest(l: f64, v: f64, a: f64, j: f64) -> f64 {
+    let ramp = |v: f64| {
+        if v >= a * a / j {
+            v / a + a / j
+        } else {
+            2.0 * (v / j).sqrt()
+        }
+    };
+    if v * ramp(v) <= l {
+        return l / v + ramp(v);
+    }
+    // Peak below v: v_p·T(v_p) = l, A reached (v_p²/A + v_p·A/J = l) or not (2·v_p^{3/2}/sqrt(J) = l).
+    let with_a = 0.5 * a * ((a * a / (j * j) + 4.0 * l / a).sqrt() - a / j);
+    let v_p = if with_a >= a * a / j {
+        with_a
+    } else {
+        (l * l * j / 4.0).cbrt()
+    };
+    2.0 * ramp(v_p)
+}
+
+#[test]
+fn scurve7_helper_matches_seed001_s_curve_column() {
+    // Seed 001 Table 1 "S curve", v = 100 mm/s, A = 2000 mm/s², J = 60000 mm/s³.
+    for (l, want) in [(0.4, 0.0598), (6.0, 0.1478), (8.5, 0.1683), (12.0, 0.2033)] {
+        let t = scurve7_rest_to_rest(l * 1e-3, 0.1, 2.0, 60.0);
+        assert!((t - want).abs() < 5e-5, "l = {l}: {t}");
+    }
+}
+
+fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..hi.ln()).prop_map(f64::exp)
+}
+
+fn speed() -> impl Strategy<Value = f64> {
+    prop_oneof![Just(0.0), 0.0..0.5f64]
+}
+
+fn request() -> impl Strategy<Value = BlockRequest> {
+    (
+        log_range(1e-6, 0.3),
+        speed(),
+        speed(),
+        log_range(1e-3, 1.0),
+        (
+            log_range(0.05, 2.0),
+            log_range(0.2, 30.0),
+            log_range(5.0, 2000.0),
+            log_range(100.0, 1e7),
+        ),
+    )
+        .prop_map(
+            |(length, v_in, v_out, v_feed, (v_max, a_max, j_max, snap_max))| BlockRequest {
+                length,
+                v_in,
+                v_out,
+                v_feed,
+                limits: Limits {
+                    v_max,
+                    a_max,
+                    j_max,
+                    snap_max,
+                },
+            },
+        )
+}
+
+fn check(kind: ProfileKind, req: &BlockRequest) -> Result<(), TestCaseError> {
+    let lim = req.limits;
+    let p = Profile::plan(kind, req);
+    let total = p.duration();
+    prop_assert!(total.is_finite() && total >= 0.0);
+    let v_top = req.v_feed.min(lim.v_max).max(req.v_in).max(req.v_out);
+    // Sample every phase finely (phases can be µs long in a block of minutes).
+    let per_phase = 64;
+    let (mut prev_s, mut prev_j, mut v_integral) = (0.0, 0.0, 0.0);
+    let mut t0 = 0.0;
+    for (ph, &dur) in p.phases().iter().enumerate() {
+        prop_assert!(dur >= 0.0, "{kind:?} phase {ph} = {dur}");
+        let h = dur / per_phase as f64;
+        let mut prev_v = p.at(t0).v;
+        for i in 0..=per_phase {
+            let t = (t0 + i as f64 * h).min(total);
+            let k = p.at(t);
+            prop_assert!(
+                k.a.abs() <= lim.a_max * (1.0 + 1e-9),
+                "{kind:?} a = {} in phase {ph}",
+                k.a
+            );
+            prop_assert!(
+                k.j.abs() <= lim.j_max * (1.0 + 1e-9),
+                "{kind:?} j = {} in phase {ph}",
+                k.j
+            );
+            prop_assert!(
+                k.v >= -1e-12 && k.v <= v_top * (1.0 + 1e-12) + 1e-15,
+                "{kind:?} v = {}",
+                k.v
+            );
+            prop_assert!(k.s >= prev_s - 1e-15, "{kind:?} s decreases");
+            if i > 0 {
+                v_integral += 0.5 * (prev_v + k.v) * h;
+                if kind == ProfileKind::Jerk15 {
+                    // Jerk is continuous with slope ≤ R (finite differences).
+                    let dj = (k.j - prev_j).abs();
+                    let bound = lim.snap_max * h * (1.0 + 1e-6) + 1e-9 * lim.j_max;
+                    prop_assert!(dj <= bound, "snap {} in phase {ph}", dj / h);
+                }
+            }
+            (prev_s, prev_j, prev_v) = (k.s, k.j, k.v);
+        }
+        t0 += dur;
+    }
+    let (start, end) = (p.at(0.0), p.at(total));
+    prop_assert!(
+        start.a == 0.0 && end.a.abs() <= 1e-12 * lim.a_max,
+        "{kind:?} a ends {} {}",
+        start.a,
+        end.a
+    );
+    prop_assert!(start.s == 0.0 && (start.v - req.v_in).abs() <= 1e-15);
+    prop_assert!(
+        (end.s - p.length()).abs() <= 1e-12 * p.length() + 1e-15,
+        "{kind:?} s(T) ≠ length"
+    );
+    prop_assert!(
+        (end.v - p.v_end()).abs() <= 1e-12 * v_top + 1e-15,
+        "{kind:?} v(T) ≠ v_end"
+    );
+    // The closed-form s agrees with the integral of v (trapezoid rule per phase, h² error).
+    prop_assert!(
+        (v_integral - end.s).abs() <= 1e-4 * end.s + 1e-12,
+        "{kind:?} ∫v = {v_integral} vs {}",
+        end.s
+    );
+    let reach = feed::ramp_distance(kind, req.v_in, req.v_out, &lim);
+    if reach <= req.length {
+        prop_assert!(
+            (p.length() - req.length).abs() <= 1e-12 * req.length,
+            "{kind:?} length {}",
+            p.length()
+        );
+        prop_assert!(p.v_end() == req.v_out);
+    } else {
+        // Closest feasible exit: between v_in and v_out, its ramp spans the block.
+        let (lo, hi) = (req.v_in.min(req.v_out), req.v_in.max(req.v_out));
+        prop_assert!(p.v_end() >= lo && p.v_end() <= hi);
+        // (Its ramp may fall short of the block by float resolution in v: the rest is cruised.)
+        let d = feed::ramp_distance(kind, req.v_in, p.v_end(), &lim);
+        prop_assert!(
+            d <= req.length * (1.0 + 1e-12),
+            "{kind:?} ramp {d} vs {}",
+            req.length
+        );
+        let closer = p.v_end() + (req.v_out - p.v_end()).signum() * (1e-9 * hi + 1e-15);
+        let d = feed::ramp_distance(kind, req.v_in, closer, &lim);
+        prop_assert!(d > req.length, "{kind:?} exit {} not the closest", p.v_end());
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn general_blocks_hold_the_contract(req in request()) {
+        for kind in KINDS {
+            check(kind, &req)?;
+        }
+    }
+
+    #[test]
+    fn rest_to_rest_never_faster_than_scurve7(req in request()) {
+        let req = BlockRequest { v_in: 0.0, v_out: 0.0, ..req };
+        let lim = req.limits;
+        let t7 = scurve7_rest_to_rest(req.length, req.v_feed.min(lim.v_max), lim.a_max, lim.j_max);
+        for kind in KINDS {
+            let p = Profile::plan(kind, &req);
+            prop_assert!(p.duration() >= t7 * (1.0 - 1e-9), "{kind:?}: {} < {t7}", p.duration());
+            check(kind, &req)?;
+        }
+    }
+
+    #[test]
+    fn max_entry_and_exit_fit(l in log_range(1e-6, 0.3), v in speed(), req in request()) {
+        let lim = req.limits;
+        for kind in KINDS {
+            let v_exit = feed::max_exit(kind, l, v, &lim);
+            prop_assert!(v_exit >= v && feed::ramp_distance(kind, v, v_exit, &lim) <= l * (1.0 + 1e-12));
+            let v_entry = feed::max_entry(kind, l, v, &lim);
+            prop_assert!(v_entry >= v && feed::ramp_distance(kind, v_entry, v, &lim) <= l * (1.0 + 1e-12));
+            // And it is the largest: 0.1 % more does not fit.
+            prop_assert!(feed::ramp_distance(kind, v, v_exit * 1.001 + 1e-9, &lim) > l);
+        }
+    }
+}
+
+#[test]
+fn degenerate_requests_do_not_panic() {
+    let limits = Limits {
+        v_max: 1.0,
+        a_max: 2.0,
+        j_max: 60.0,
+        snap_max: 6000.0,
+    };
+    let zero = BlockRequest {
+        length: 0.0,
+        v_in: 0.1,
+        v_out: 0.0,
+        v_feed: 0.5,
+        limits,
+    };
+    for kind in KINDS {
+        // No room: the entry speed is kept, nothing is covered.
+        let p = Profile::plan(kind, &zero);
+        assert!(
+            p.duration() == 0.0 && p.length() == 0.0 && p.v_end() == 0.1,
+            "{kind:?}"
+        );
+        // Nonsense numbers give some finite profile (or a standstill), never a panic.
+        for req in [
+            BlockRequest {
+                length: f64::NAN,
+                v_in: f64::NAN,
+                v_feed: f64::NAN,
+                ..zero
+            },
+            BlockRequest {
+                length: 0.01,
+                v_in: 0.0,
+                v_feed: 0.0,
+                ..zero
+            },
+            BlockRequest {
+                limits: Limits {
+                    a_max: 0.0,
+                    j_max: -1.0,
+                    snap_max: 0.0,
+                    ..limits
+                },
+                ..zero
+            },
+        ] {
+            let p = Profile::plan(kind, &req);
+            let k = p.at(p.duration());
+            assert!(k.s.is_finite() && k.v.is_finite(), "{kind:?} {req:?} {k:?}");
+        }
+        // No snap limit (0): jerk15 falls back to its 7-phase shape and still ends exactly.
+        let req = BlockRequest {
+            length: 0.01,
+            v_in: 0.0,
+            limits: Limits {
+                snap_max: 0.0,
+                ..limits
+            },
+            ..zero
+        };
+        let p = Profile::plan(kind, &req);
+        assert!(
+            (p.at(p.duration()).s - 0.01).abs() < 1e-15 && p.at(p.duration()).a == 0.0,
+            "{kind:?}"
+        );
+    }
+}
