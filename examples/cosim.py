@@ -121,7 +121,10 @@ def cosim_libcosim(ssp=SSP, stop_time=2.0, h=H):
     """libcosim 0.x through libcosimpy: SSP loaded by libcosim, fixed-step (Jacobi) algorithm, time in ns."""
     from libcosimpy.CosimEnums import CosimVariableType
     from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
 
     h_ns = int(round(h * 1e9))
     ex = CosimExecution.from_ssp_file(str(ssp), step_size=h_ns)

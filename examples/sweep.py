@@ -26,8 +26,9 @@ FIELDS = ["program", "profile", "jerk_mm_s3", "cycle_time_s", "max_contour_error
 _unpacked = {}
 
 
-def simulate_case(case, cnc_fmu=str(fmusim.CNC_FMU), structure_fmu=str(fmusim.STRUCTURE_FMU)):
-    """One case (program path, profile, jerk limit in mm/s³) → dict of FIELDS. Runs in a Dask worker."""
+def simulate_case(case, cnc_fmu, structure_fmu):
+    """One case (program path, profile, jerk limit in mm/s³) → dict of FIELDS. Runs in a Dask worker
+    (absolute FMU paths: a worker imports this module from its own scratch folder)."""
     sys.path.insert(0, str(HERE))
     from cosim import cosim_slaves, residual_vibration
 
@@ -56,7 +57,7 @@ def cases(programs, profiles, jerks):
 
 
 def run_serial(case_list):
-    return [simulate_case(c) for c in case_list]
+    return [simulate_case(c, str(fmusim.CNC_FMU), str(fmusim.STRUCTURE_FMU)) for c in case_list]
 
 
 def run_dask(case_list, scheduler=None, n_workers=2):
@@ -68,14 +69,17 @@ def run_dask(case_list, scheduler=None, n_workers=2):
         client = Client(scheduler)
     else:
         cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+                               dashboard_address=":0")
         client = Client(cluster)
     try:
-        client.upload_file(str(HERE / "fmusim.py"))
-        client.upload_file(str(HERE / "make_ssp.py"))
-        client.upload_file(str(HERE / "cosim.py"))
-        client.upload_file(str(HERE / "sweep.py"))
-        futures = client.map(simulate_case, case_list, pure=False)
+        if scheduler:
+            # Remote workers get the example modules shipped; LocalCluster workers inherit sys.path.
+            # (Not for a LocalCluster: its scheduler lives in this process and would re-import the
+            # uploaded copies here, pointing fmusim's paths at the scratch folder.)
+            for name in ("fmusim.py", "make_ssp.py", "cosim.py", "sweep.py"):
+                client.upload_file(str(HERE / name))
+        futures = client.map(simulate_case, case_list, cnc_fmu=str(fmusim.CNC_FMU),
+                             structure_fmu=str(fmusim.STRUCTURE_FMU), pure=False)
         return client.gather(futures)
     finally:
         client.close()
