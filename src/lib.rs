@@ -10,6 +10,7 @@ pub mod config;
 pub mod engine;
 pub mod error;
 pub mod feed;
+pub mod fmu;
 pub mod gcode;
 pub mod interp;
 pub mod model;

@@ -1,0 +1,53 @@
+//! Print the planned segments of a program: line, kind, length, v_in, v_out, duration.
+use cnc_motion::config::Machine;
+use cnc_motion::feed::FeedLaw;
+use cnc_motion::gcode::Reader;
+use cnc_motion::path::{PathBuilder, Segment};
+use cnc_motion::plan::Planner;
+use std::collections::VecDeque;
+use std::sync::Arc;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let text = std::fs::read_to_string(&args[1]).expect("program");
+    let machine = match args.get(2) {
+        Some(p) => Machine::from_toml(&std::fs::read_to_string(p).expect("machine"), p).expect("machine"),
+        None => Machine::default(),
+    };
+    let mut reader = Reader::new(Arc::from(text), &args[1], [0.0; 3]);
+    let mut builder = PathBuilder::new(&machine);
+    let mut planner = Planner::new(machine.profile, machine.lookahead_blocks);
+    let (mut segs, mut out) = (Vec::new(), VecDeque::new());
+    while let Some(b) = reader.next_block().expect("valid") {
+        builder.push(&b, &mut segs);
+        for s in segs.drain(..) {
+            planner.push(s, &mut out);
+        }
+    }
+    builder.finish(&mut segs);
+    for s in segs.drain(..) {
+        planner.push(s, &mut out);
+    }
+    planner.finish(&mut out);
+    let mut total = 0.0;
+    for p in &out {
+        let kind = match p.block.segment {
+            Segment::Line(_) => "line",
+            Segment::Arc(_) => "arc",
+            Segment::Blend(_) => "blend",
+            Segment::Dwell { .. } => "dwell",
+        };
+        total += p.profile.duration();
+        println!(
+            "{:4} {:6} L={:9.4} mm  v_in={:8.3}  v_out={:8.3}  feed={:8.3} mm/s  T={:.4} s  (t={:.4})",
+            p.block.line,
+            kind,
+            p.block.segment.length() * 1e3,
+            p.v_in * 1e3,
+            p.v_out * 1e3,
+            p.block.v_feed * 1e3,
+            p.profile.duration(),
+            total
+        );
+    }
+}
