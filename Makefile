@@ -3,6 +3,8 @@ VENV   := .venv
 PY     := $(VENV)/bin/python
 PYTHON ?= python3
 CARGO  ?= cargo
+# Binaries follow CARGO_TARGET_DIR when it is set; the FMUs always go to target/fmu.
+BIN    := $(or $(CARGO_TARGET_DIR),target)/release
 
 .PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep
 
@@ -20,10 +22,10 @@ build:
 	$(CARGO) build --release --workspace --bins --lib
 
 # Both FMUs and the SSP that couples them (examples/cosim.ssp, generated, not committed).
-STRUCTURE_PACKAGE ?= ./target/release/machine-structure package --output target/fmu/MachineStructure.fmu
+STRUCTURE_PACKAGE ?= $(BIN)/machine-structure package --output target/fmu/MachineStructure.fmu
 
 fmu: build venv
-	./target/release/cnc-motion package --output target/fmu/CncMotion.fmu
+	$(BIN)/cnc-motion package --output target/fmu/CncMotion.fmu
 	$(STRUCTURE_PACKAGE)
 	$(PY) examples/make_ssp.py
 

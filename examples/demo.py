@@ -33,11 +33,10 @@ def simulate(fmu, program=None, profile=None, t_max=300.0):
     if profile is not None:  # fmpy sets Enumerations by their integer
         var = next(v for v in md.modelVariables if v.name == "machine.profile")
         start["machine.profile"] = next(int(i.value) for i in var.declaredType.items if i.name == profile)
-    fin = names.index("program.finished") + 1  # column in the recorder rows (time first)
+    fin = [next(v.valueReference for v in md.modelVariables if v.name == "program.finished")]
 
-    def step_finished(time, recorder):
-        rows = recorder.rows
-        return not (rows and rows[-1][fin])
+    def step_finished(time, recorder):  # keep going while the program runs
+        return not recorder.fmu.getBoolean(fin)[0]
 
     res = simulate_fmu(str(fmu), fmi_type="CoSimulation", start_time=0.0, stop_time=t_max,
                        output_interval=H, output=names, start_values=start, step_finished=step_finished)

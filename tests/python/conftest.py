@@ -1,11 +1,14 @@
+import os
 import pathlib
 import subprocess
 
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-SHARED = ROOT.parent / "shared"
-CLI = ROOT / "target" / "release" / "cnc-motion"
+# CI puts ../shared beside the clone; a git worktree may sit one level deeper.
+SHARED = next((p / "shared" for p in (ROOT.parent, ROOT.parent.parent) if (p / "shared" / "corpus").is_dir()),
+              ROOT.parent / "shared")
+CLI = ROOT / os.environ.get("CARGO_TARGET_DIR", "target") / "release" / "cnc-motion"
 
 
 @pytest.fixture(scope="session")
