@@ -7,7 +7,7 @@ use crate::gcode::{Motion, Reader};
 use crate::interp::{Interpolator, Tick};
 use crate::path::{PathBlock, PathBuilder};
 use crate::plan::{Planned, Planner};
-use crate::servo::AxisState;
+use crate::servo::{AxisCommand, AxisState, ServoAxis};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -108,6 +108,9 @@ pub struct Engine {
     time: f64,
     scale: TimeScale,
     servo: bool,
+    /// The three drives when the servo model is on, and the time they have reached.
+    drives: Option<Vec<ServoAxis>>,
+    servo_time: f64,
     feed_override: f64,
     feed_hold: bool,
     load_force: Vec3,
@@ -139,6 +142,8 @@ impl Engine {
             time: 0.0,
             scale: TimeScale::new(machine),
             servo: false,
+            drives: None,
+            servo_time: 0.0,
             feed_override: 1.0,
             feed_hold: false,
             load_force: [0.0; 3],
@@ -153,6 +158,12 @@ impl Engine {
     /// Switch the servo-axis model on (the FMU always does; the CLI with `--servo`).
     pub fn with_servo(mut self, on: bool) -> Engine {
         self.servo = on;
+        self.drives = on.then(|| {
+            (0..3)
+                .map(|i| ServoAxis::new(self.machine.servo[i], self.tick.p[i]))
+                .collect()
+        });
+        self.servo_time = self.time;
         self
     }
 
@@ -192,6 +203,9 @@ impl Engine {
 
     /// Actual axis states after the drives (equal to the command when the servo is off).
     pub fn axes(&self) -> [AxisState; 3] {
+        if let Some(d) = &self.drives {
+            return [d[0].state(), d[1].state(), d[2].state()];
+        }
         let mut out = [AxisState::default(); 3];
         for (i, o) in out.iter_mut().enumerate() {
             o.position = self.tick.p[i];
@@ -252,12 +266,35 @@ impl Engine {
             if t_tick > t_end + slack {
                 break;
             }
-            self.time = t_tick.min(t_end);
+            let t = t_tick.min(t_end);
+            self.servo_to(t);
+            self.time = t;
             self.ticks += 1;
             self.interpolate(t_tick)?;
         }
+        self.servo_to(t_end);
         self.time = t_end;
         Ok(())
+    }
+
+    /// Drives from their time to t with the current command held (zero-order hold).
+    fn servo_to(&mut self, t: f64) {
+        let Some(drives) = self.drives.as_mut() else {
+            return;
+        };
+        let dt = t - self.servo_time;
+        if dt <= 0.0 {
+            return;
+        }
+        for (i, d) in drives.iter_mut().enumerate() {
+            let cmd = AxisCommand {
+                position: self.tick.p[i],
+                velocity: self.tick.v[i],
+                acceleration: self.tick.a[i],
+            };
+            d.step(&cmd, self.load_force[i], dt);
+        }
+        self.servo_time = t;
     }
 
     /// One interpolation tick at time `t`.

@@ -469,6 +469,26 @@ pub fn variables() -> Vec<Variable> {
             |m, i, x| m.axes[i].max_jerk = positive("maxJerk", x)?
         );
     }
+    for (i, a) in AXES.iter().enumerate() {
+        for (k, sp) in crate::servo::PARAMETERS.iter().enumerate() {
+            v.push(Variable {
+                name: format!("{a}.servo.{}", sp.fmi_name),
+                value_reference: 0,
+                kind: Kind::Real,
+                causality: Causality::Parameter,
+                variability: Variability::Fixed,
+                unit: Some(sp.unit),
+                display_unit: None,
+                description: format!("{a} drive: {}", sp.description),
+                // Axis and parameter packed in one index: axis·64 + parameter.
+                axis: i * 64 + k,
+                access: Access::Real(
+                    |c, n| (crate::servo::PARAMETERS[n % 64].get)(&c.machine.servo[n / 64]),
+                    Some(|c, n, x| c.machine.servo[n / 64].set(crate::servo::PARAMETERS[n % 64].fmi_name, x)),
+                ),
+            });
+        }
+    }
     v.push(Variable {
         name: "servo.enabled".into(),
         value_reference: 0,

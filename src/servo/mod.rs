@@ -1,5 +1,11 @@
-//! Servo-axis model: a cascaded feed drive per axis, sub-stepped inside the interpolation period.
-//! PLACEHOLDER until the servo model lands: parameters only.
+//! Servo-axis model: a cascaded feed drive per axis, sub-stepped at the servo rate inside the
+//! interpolation period (docs/servo.md has the structure, equations and defaults).
+
+mod drive;
+mod params;
+
+pub use drive::{expm, plant_matrix, AxisCommand, ServoAxis};
+pub use params::{ServoParameter, ServoParams, PARAMETERS};
 
 use serde::{Deserialize, Serialize};
 
@@ -10,24 +16,10 @@ pub struct AxisState {
     pub position: f64,
     /// m/s
     pub velocity: f64,
-    /// command − actual position (m)
+    /// command − feedback position (m)
     pub following_error: f64,
     /// N·m
     pub motor_torque: f64,
     /// Force the drive puts on the structure (N)
     pub drive_force: f64,
-}
-
-/// Drive parameters of one axis (SI), `[servo.x]` in the machine file.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct ServoParams {}
-
-impl ServoParams {
-    /// Read `[servo.x]` keys over the defaults.
-    pub fn from_table(table: &toml::Table) -> Result<ServoParams, String> {
-        if let Some(key) = table.keys().next() {
-            return Err(format!("unknown servo key `{key}`"));
-        }
-        Ok(ServoParams::default())
-    }
 }

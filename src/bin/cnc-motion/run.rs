@@ -102,6 +102,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         Peaks::default(),
         Peaks::default(),
     );
+    let mut torque = Peaks::default();
     let mut max_contour: f64 = 0.0;
     let mut n: u64 = 0;
     while !engine.finished() && engine.time() < args.max_time {
@@ -111,6 +112,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         j.take(tick.j);
         let axes = engine.axes();
         fe.take(axes.map(|s| s.following_error));
+        torque.take(axes.map(|s| s.motor_torque));
         max_contour = max_contour.max(engine.contour_error());
         if let Some((path, w)) = csv.as_mut() {
             let p = tick.p.map(|x| x / MM);
@@ -183,6 +185,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     if args.servo {
         summary["max_following_error_mm"] = serde_json::json!(fe.mm());
         summary["max_contour_error_mm"] = serde_json::json!(max_contour / MM);
+        summary["max_motor_torque_n_m"] = serde_json::json!(torque.0);
     }
     if args.json {
         println!("{summary}");

@@ -1,0 +1,331 @@
+//! Drive parameters of one axis: one table gives the machine-file key (with its unit), the FMU
+//! name, the SI factor and the default, so the TOML reader, the FMU variables and the docs agree.
+
+use serde::{Deserialize, Serialize};
+
+/// Drive parameters of one axis (SI), `[servo.x]` in the machine file.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ServoParams {
+    /// Ball-screw lead (m per motor revolution).
+    pub screw_lead: f64,
+    /// Motor rotor inertia (kg·m²).
+    pub rotor_inertia: f64,
+    /// Screw and coupling inertia on the motor side (kg·m²).
+    pub screw_inertia: f64,
+    /// Table (and workpiece) mass (kg).
+    pub table_mass: f64,
+    /// Axial stiffness of screw, nut and bearings (N/m).
+    pub axial_stiffness: f64,
+    /// Axial damping (N·s/m).
+    pub axial_damping: f64,
+    /// Viscous friction on the table (N·s/m).
+    pub viscous_friction: f64,
+    /// Coulomb friction on the table (N), smoothed over `friction_velocity`.
+    pub coulomb_friction: f64,
+    /// Velocity band of the smoothed Coulomb friction, F·tanh(v/v_band) (m/s).
+    pub friction_velocity: f64,
+    /// Rated and peak motor torque (N·m); the torque command saturates at the peak.
+    pub rated_torque: f64,
+    pub peak_torque: f64,
+    /// Maximum motor speed (rad/s), for the check of the machine's axis velocity.
+    pub max_speed: f64,
+    /// Encoder resolution (counts per motor revolution); 0 = ideal.
+    pub encoder_counts: f64,
+    /// Position loop gain k_v (1/s).
+    pub kv: f64,
+    /// Velocity loop PI: proportional gain (N·m·s/rad) and integral time (s).
+    pub velocity_gain: f64,
+    pub velocity_integral_time: f64,
+    /// Current (torque) loop as a first-order lag (s).
+    pub current_time_constant: f64,
+    /// Velocity and acceleration feed-forward (0…1).
+    pub velocity_feedforward: f64,
+    pub acceleration_feedforward: f64,
+    /// Position feedback: 0 motor encoder (semi-closed loop), 1 linear scale on the table.
+    pub linear_scale: f64,
+    /// Servo (sub-step) rate (Hz).
+    pub servo_rate: f64,
+}
+
+impl Default for ServoParams {
+    /// Seed 000, Table 1 (a real 3-axis mill) for the motor and screw; the rest chosen for a small
+    /// mill and documented in docs/servo.md.
+    fn default() -> Self {
+        ServoParams {
+            screw_lead: 1.2e-3,
+            rotor_inertia: 0.42e-4,
+            screw_inertia: 0.20e-4,
+            table_mass: 50.0,
+            axial_stiffness: 1.5e8,
+            axial_damping: 2.0e3,
+            viscous_friction: 200.0,
+            coulomb_friction: 20.0,
+            friction_velocity: 1e-4,
+            rated_torque: 0.64,
+            peak_torque: 1.9,
+            max_speed: 5000.0 * 2.0 * std::f64::consts::PI / 60.0,
+            encoder_counts: 10000.0,
+            kv: 40.0,
+            velocity_gain: 0.06,
+            velocity_integral_time: 4e-3,
+            current_time_constant: 2e-4,
+            velocity_feedforward: 1.0,
+            acceleration_feedforward: 0.0,
+            linear_scale: 0.0,
+            servo_rate: 8000.0,
+        }
+    }
+}
+
+/// One parameter: machine-file key (unit in the name), FMU name, SI unit, factor file → SI.
+pub struct ServoParameter {
+    pub key: &'static str,
+    pub fmi_name: &'static str,
+    pub unit: &'static str,
+    pub factor: f64,
+    pub description: &'static str,
+    pub get: fn(&ServoParams) -> f64,
+    pub set: fn(&mut ServoParams, f64),
+}
+
+macro_rules! p {
+    ($key:literal, $fmi:literal, $unit:literal, $factor:expr, $field:ident, $desc:literal) => {
+        ServoParameter {
+            key: $key,
+            fmi_name: $fmi,
+            unit: $unit,
+            factor: $factor,
+            description: $desc,
+            get: |s| s.$field,
+            set: |s, v| s.$field = v,
+        }
+    };
+}
+
+const RPM: f64 = 2.0 * std::f64::consts::PI / 60.0;
+
+pub const PARAMETERS: &[ServoParameter] = &[
+    p!(
+        "screw_lead_mm",
+        "screwLead",
+        "m",
+        1e-3,
+        screw_lead,
+        "ball-screw lead per motor revolution"
+    ),
+    p!(
+        "rotor_inertia_kg_m2",
+        "rotorInertia",
+        "kg.m2",
+        1.0,
+        rotor_inertia,
+        "motor rotor inertia"
+    ),
+    p!(
+        "screw_inertia_kg_m2",
+        "screwInertia",
+        "kg.m2",
+        1.0,
+        screw_inertia,
+        "screw and coupling inertia"
+    ),
+    p!(
+        "table_mass_kg",
+        "tableMass",
+        "kg",
+        1.0,
+        table_mass,
+        "table and workpiece mass"
+    ),
+    p!(
+        "axial_stiffness_n_um",
+        "axialStiffness",
+        "N/m",
+        1e6,
+        axial_stiffness,
+        "axial stiffness of screw, nut, bearings"
+    ),
+    p!(
+        "axial_damping_n_s_m",
+        "axialDamping",
+        "N.s/m",
+        1.0,
+        axial_damping,
+        "axial damping"
+    ),
+    p!(
+        "viscous_friction_n_s_m",
+        "viscousFriction",
+        "N.s/m",
+        1.0,
+        viscous_friction,
+        "viscous friction on the table"
+    ),
+    p!(
+        "coulomb_friction_n",
+        "coulombFriction",
+        "N",
+        1.0,
+        coulomb_friction,
+        "Coulomb friction on the table"
+    ),
+    p!(
+        "friction_velocity_mm_s",
+        "frictionVelocity",
+        "m/s",
+        1e-3,
+        friction_velocity,
+        "smoothing band of Coulomb friction"
+    ),
+    p!(
+        "rated_torque_n_m",
+        "ratedTorque",
+        "N.m",
+        1.0,
+        rated_torque,
+        "rated motor torque"
+    ),
+    p!(
+        "peak_torque_n_m",
+        "peakTorque",
+        "N.m",
+        1.0,
+        peak_torque,
+        "peak motor torque (saturation)"
+    ),
+    p!(
+        "max_speed_rpm",
+        "maxSpeed",
+        "rad/s",
+        RPM,
+        max_speed,
+        "maximum motor speed"
+    ),
+    p!(
+        "encoder_counts",
+        "encoderCounts",
+        "1",
+        1.0,
+        encoder_counts,
+        "encoder counts per revolution (0: ideal)"
+    ),
+    p!("kv_1_s", "kv", "1/s", 1.0, kv, "position loop gain"),
+    p!(
+        "velocity_gain_n_m_s_rad",
+        "velocityGain",
+        "N.m.s/rad",
+        1.0,
+        velocity_gain,
+        "velocity loop proportional gain"
+    ),
+    p!(
+        "velocity_integral_time_ms",
+        "velocityIntegralTime",
+        "s",
+        1e-3,
+        velocity_integral_time,
+        "velocity loop integral time"
+    ),
+    p!(
+        "current_time_constant_ms",
+        "currentTimeConstant",
+        "s",
+        1e-3,
+        current_time_constant,
+        "current loop time constant"
+    ),
+    p!(
+        "velocity_feedforward",
+        "velocityFeedforward",
+        "1",
+        1.0,
+        velocity_feedforward,
+        "velocity feed-forward 0…1"
+    ),
+    p!(
+        "acceleration_feedforward",
+        "accelerationFeedforward",
+        "1",
+        1.0,
+        acceleration_feedforward,
+        "acceleration feed-forward 0…1"
+    ),
+    p!(
+        "linear_scale",
+        "linearScale",
+        "1",
+        1.0,
+        linear_scale,
+        "position feedback: 0 motor encoder, 1 linear scale"
+    ),
+    p!(
+        "servo_rate_hz",
+        "servoRate",
+        "Hz",
+        1.0,
+        servo_rate,
+        "servo sub-step rate"
+    ),
+];
+
+impl ServoParams {
+    /// Read `[servo.x]` keys over the defaults; unknown keys and bad values are errors.
+    pub fn from_table(table: &toml::Table) -> Result<ServoParams, String> {
+        let mut s = ServoParams::default();
+        for (key, value) in table {
+            let p = PARAMETERS.iter().find(|p| p.key == key).ok_or_else(|| {
+                let keys: Vec<&str> = PARAMETERS.iter().map(|p| p.key).collect();
+                format!("unknown servo key `{key}` (known: {})", keys.join(", "))
+            })?;
+            let v = value
+                .as_float()
+                .or_else(|| value.as_integer().map(|i| i as f64))
+                .ok_or_else(|| format!("servo key `{key}` must be a number"))?;
+            (p.set)(&mut s, v * p.factor);
+        }
+        s.check()?;
+        Ok(s)
+    }
+
+    /// Value of the parameter with this FMU name (SI).
+    pub fn get(&self, fmi_name: &str) -> Option<f64> {
+        PARAMETERS
+            .iter()
+            .find(|p| p.fmi_name == fmi_name)
+            .map(|p| (p.get)(self))
+    }
+
+    pub fn set(&mut self, fmi_name: &str, value: f64) -> Result<(), String> {
+        let p = PARAMETERS
+            .iter()
+            .find(|p| p.fmi_name == fmi_name)
+            .ok_or(format!("no servo parameter {fmi_name}"))?;
+        let mut s = *self;
+        (p.set)(&mut s, value);
+        s.check()?;
+        *self = s;
+        Ok(())
+    }
+
+    /// Physical ranges: masses, inertias, gains and rates positive; ratios in 0…1.
+    pub fn check(&self) -> Result<(), String> {
+        for p in PARAMETERS {
+            let v = (p.get)(self);
+            let ok = match p.fmi_name {
+                "axialDamping" | "viscousFriction" | "coulombFriction" | "encoderCounts" | "screwInertia" => {
+                    v.is_finite() && v >= 0.0
+                }
+                "velocityFeedforward" | "accelerationFeedforward" => (0.0..=1.0).contains(&v),
+                "linearScale" => v == 0.0 || v == 1.0,
+                _ => v.is_finite() && v > 0.0,
+            };
+            if !ok {
+                return Err(format!("servo parameter {} = {v} is out of range", p.key));
+            }
+        }
+        if self.peak_torque < self.rated_torque {
+            return Err("servo: peak_torque must not be below rated_torque".into());
+        }
+        Ok(())
+    }
+}
