@@ -58,7 +58,7 @@ def summary(res):
     return out
 
 
-def plots(res, out, corner=(40.0, 0.0)):
+def plots(res, out, corner=(40.0, 0.0), zoom=0.1):
     t = res["time"]
     fig, ax = plt.subplots(3, 1, sharex=True, figsize=(9, 8))
     ax[0].plot(t, res["path.feed"] * MM, label="path")
@@ -87,10 +87,10 @@ def plots(res, out, corner=(40.0, 0.0)):
     if "x.position" in res.dtype.names:
         ax[1].plot(res["x.position"] * MM, res["y.position"] * MM, lw=0.6, label="axis (servo)")
     ax[1].plot([cx - 2, cx, cx], [cy, cy, cy + 2], "k:", lw=0.8, label="programmed")
-    ax[1].set_xlim(cx - 1.5, cx + 0.5)
-    ax[1].set_ylim(cy - 0.5, cy + 1.5)
+    ax[1].set_xlim(cx - zoom, cx + 0.25 * zoom)  # mm: the blend lies within the path tolerance
+    ax[1].set_ylim(cy - 0.25 * zoom, cy + zoom)
     ax[1].set_aspect("equal")
-    ax[1].set_title(f"corner zoom at X{cx:g} Y{cy:g}")
+    ax[1].set_title(f"corner zoom at X{cx:g} Y{cy:g} (mm)")
     ax[1].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out / "path.png", dpi=110)
