@@ -78,18 +78,15 @@ class Slave:
         log = self.log
 
         def logger(env, instance, status, category, message):
-            log.append((int(status), category.decode(errors="replace") if category else "",
-                        message.decode(errors="replace") if message else ""))
+            # Messages are printf formats; FMUs escape a literal '%' as '%%'. fmpy's C logger proxy is
+            # not used: it keeps ONE global logger for all instances (a crash with instances in threads).
+            text = message.decode(errors="replace").replace("%%", "%") if message else ""
+            log.append((int(status), category.decode(errors="replace") if category else "", text))
 
         cb = fmi2CallbackFunctions()
         cb.logger = fmi2CallbackLoggerTYPE(logger)
         cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(_libc.calloc)
         cb.freeMemory = fmi2CallbackFreeMemoryTYPE(_libc.free)
-        try:  # formats printf-style messages in C before they reach Python
-            from fmpy.logging import addLoggerProxy
-            addLoggerProxy(ctypes.byref(cb))
-        except Exception:  # noqa: BLE001 - plain messages still arrive
-            pass
         return cb
 
     # -- values by name ---------------------------------------------------------------------
