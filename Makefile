@@ -3,8 +3,10 @@ VENV   := .venv
 PY     := $(VENV)/bin/python
 PYTHON ?= python3
 CARGO  ?= cargo
+# Binaries follow CARGO_TARGET_DIR when it is set; the FMUs always go to target/fmu.
+BIN    := $(or $(CARGO_TARGET_DIR),target)/release
 
-.PHONY: all build fmu demo test test-rust test-python bench lint clean venv
+.PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep
 
 all: build
 
@@ -19,19 +21,32 @@ $(VENV)/.installed: requirements.txt
 build:
 	$(CARGO) build --release --workspace --bins --lib
 
-fmu: build
-	./target/release/cnc-motion package --output target/fmu/CncMotion.fmu
-	./target/release/package-machine-structure target/fmu/MachineStructure.fmu
+# Both FMUs and the SSP that couples them (examples/cosim.ssp, generated, not committed).
+STRUCTURE_PACKAGE ?= $(BIN)/package-machine-structure target/fmu/MachineStructure.fmu
 
-demo: build venv
+fmu: build venv
+	$(BIN)/cnc-motion package --output target/fmu/CncMotion.fmu
+	$(STRUCTURE_PACKAGE)
+	$(PY) examples/make_ssp.py
+
+demo: fmu
 	$(PY) examples/demo.py
+	$(PY) examples/cosim.py --out out
+
+cosim: fmu
+	$(PY) examples/cosim.py --master slaves
+	$(PY) examples/cosim.py --master fmpy-ssp
+	$(PY) examples/cosim.py --master libcosim
+
+sweep: fmu
+	$(PY) examples/sweep.py
 
 test: test-rust test-python
 
 test-rust:
 	$(CARGO) test --workspace
 
-test-python: build venv
+test-python: fmu
 	$(PY) -m pytest -q tests/python
 
 bench:
@@ -42,4 +57,4 @@ lint:
 	$(CARGO) clippy --workspace --all-targets -- -D warnings
 
 clean:
-	rm -rf out target/fmu
+	rm -rf out target/fmu examples/cosim.ssp

@@ -1,0 +1,245 @@
+"""Co-simulation of CncMotion.fmu with MachineStructure.fmu at 1 ms, three ways that must agree:
+
+  * `cosim_slaves`   — this file's own master over fmpy's FMU2Slave,
+  * `cosim_fmpy_ssp` — fmpy.ssp.simulate_ssp on examples/cosim.ssp,
+  * `cosim_libcosim` — libcosim (libcosimpy) on the same SSP.
+
+All three use the same scheme (fixed step, Jacobi: every FMU steps with the values the others had at
+the start of the step, then the connections are applied), the two-way force coupling
+    cnc.{x,y,z}.driveForce → structure.{x,y,z}.driveForce,
+    structure.{x,y,z}.loadForce → cnc.{x,y,z}.loadForce,
+and connector values that start at 0 (the frame is at rest, the drives hold still).
+
+    python examples/cosim.py [--master slaves|fmpy-ssp|libcosim] [--stop-time S] [--program FILE.ngc]
+                             [--profile scurve7] [--out out/]
+
+Results: dict name → numpy array, names as "cnc.x.command.position", "structure.x.deflection",
+and "time" = the communication point at the END of each step.
+"""
+import argparse
+import pathlib
+import sys
+
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from fmusim import AXES, CNC_FMU, SSP, STRUCTURE_FMU, Slave, Unpacked  # noqa: E402
+
+H = 1e-3
+
+
+def coupling():
+    from make_ssp import connections
+    return connections()
+
+
+def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H, stop_time=None,
+                 after=0.3, t_max=120.0, record=None, inputs=None):
+    """Own master. Runs until stop_time, or (stop_time None) until program.finished + `after` s.
+
+    `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step."""
+    cnc = Slave(cnc_u, "cnc")
+    st = Slave(structure_u, "structure")
+    slaves = {"cnc": cnc, "structure": st}
+    try:
+        cnc.initialize(cnc_params)
+        st.initialize(structure_params)
+        conns = coupling()
+        value = {(fc, fv): 0.0 for fc, fv, _, _ in conns}
+        from make_ssp import CNC_RECORDED, STRUCTURE_RECORDED
+        record = record or (["cnc." + n for n in CNC_RECORDED] + ["structure." + n for n in STRUCTURE_RECORDED]
+                            + [f"cnc.{fv}" for fc, fv, _, _ in conns if fc == "cnc"]
+                            + [f"structure.{fv}" for fc, fv, _, _ in conns if fc == "structure"])
+        record = list(dict.fromkeys(record))
+        readers = {}
+        for comp in slaves:
+            names = [r.split(".", 1)[1] for r in record if r.startswith(comp + ".")]
+            readers[comp] = (names, slaves[comp].reader(names))
+        i_fin = record.index("cnc.program.finished")
+        rows = []
+        t_end = None
+        while True:
+            t = cnc.time
+            if stop_time is not None and t >= stop_time - 1e-9:
+                break
+            if stop_time is None and (t >= t_max or (t_end is not None and t >= t_end + after - 1e-9)):
+                break
+            # Jacobi: inputs from the previous communication point, then every FMU steps.
+            for fc, fv, tc, tv in conns:
+                slaves[tc].set(tv, value[(fc, fv)])
+            if inputs is not None:
+                inputs(t, cnc)
+            for s in slaves.values():
+                s.step(h)
+            for fc, fv, _, _ in conns:
+                value[(fc, fv)] = slaves[fc].get(fv)
+            row = []
+            for comp in slaves:
+                row += readers[comp][1]()
+            # reorder to `record`
+            rows.append([cnc.time] + row)
+            if t_end is None and row[_flat_index(readers, record, i_fin)]:
+                t_end = cnc.time
+        if stop_time is None and t_end is None:
+            raise RuntimeError(f"program not finished after {t_max} s")
+    finally:
+        for s in slaves.values():
+            s.free()
+    a = np.array(rows)
+    res = {"time": a[:, 0]}
+    col = 1
+    for comp in slaves:
+        for n in readers[comp][0]:
+            res[f"{comp}.{n}"] = a[:, col]
+            col += 1
+    res["t_finished"] = t_end
+    return res
+
+
+def _flat_index(readers, record, i):
+    """Column of record[i] in the concatenated per-component reader rows."""
+    comp, name = record[i].split(".", 1)
+    col = 0
+    for c, (names, _) in readers.items():
+        if c == comp:
+            return col + names.index(name)
+        col += len(names)
+    raise KeyError(record[i])
+
+
+def cosim_fmpy_ssp(ssp=SSP, stop_time=2.0, h=H):
+    """fmpy.ssp.simulate_ssp. Its rows are stamped with the START of each step; we restamp with the end."""
+    from fmpy.ssp.simulation import simulate_ssp
+    r = simulate_ssp(str(ssp), stop_time=stop_time, step_size=h)
+    res = {"time": (np.arange(len(r)) + 1) * h}
+    for name in r.dtype.names[1:]:
+        res[name] = np.asarray(r[name], dtype=float)
+    return res
+
+
+def cosim_libcosim(ssp=SSP, stop_time=2.0, h=H):
+    """libcosim 0.x through libcosimpy: SSP loaded by libcosim, fixed-step (Jacobi) algorithm, time in ns."""
+    from libcosimpy.CosimEnums import CosimVariableType
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
+
+    h_ns = int(round(h * 1e9))
+    ex = CosimExecution.from_ssp_file(str(ssp), step_size=h_ns)
+    obs = CosimObserver.create_last_value()
+    ex.add_observer(obs)
+    from make_ssp import CNC_RECORDED, STRUCTURE_RECORDED
+    wanted = {"cnc": CNC_RECORDED, "structure": STRUCTURE_RECORDED + [f"{a}.loadForce" for a in AXES]}
+    wanted["cnc"] = wanted["cnc"] + [f"{a}.driveForce" for a in AXES]
+    plan = []  # (key, slave index, reader kind, reference)
+    for comp, names in wanted.items():
+        idx = ex.slave_index_from_instance_name(comp)
+        desc = {v.name.decode(): v for v in ex.slave_variables(idx)}
+        for n in names:
+            v = desc[n]
+            plan.append((f"{comp}.{n}", idx, CosimVariableType(v.type), v.reference))
+    n_steps = int(round(stop_time / h))
+    rows = []
+    for _ in range(n_steps):
+        if not ex.step():
+            raise RuntimeError("libcosim step failed")
+        row = []
+        for key, idx, ty, ref in plan:
+            if ty == CosimVariableType.REAL:
+                row.append(obs.last_real_values(idx, [ref])[0])
+            elif ty == CosimVariableType.BOOLEAN:
+                row.append(float(obs.last_boolean_values(idx, [ref])[0]))
+            else:
+                row.append(float(obs.last_integer_values(idx, [ref])[0]))
+        rows.append(row)
+    a = np.array(rows)
+    res = {"time": (np.arange(n_steps) + 1) * h}
+    for i, (key, *_rest) in enumerate(plan):
+        res[key] = a[:, i]
+    return res
+
+
+def residual_vibration(res, window=0.2, min_standstill=0.02, prefix="cnc."):
+    """RMS of the frame deflection |d| in the windows after each stop of the command.
+
+    A stop is where the commanded axis speeds fall to zero and stay there at least `min_standstill`;
+    its window runs `window` s or until the command moves again. Returns (rms, number of stops)."""
+    t = res["time"]
+    speed = np.sqrt(sum(res[f"{prefix}{a}.command.velocity"] ** 2 for a in AXES))
+    defl = np.sqrt(sum(res[f"structure.{a}.deflection"] ** 2 for a in AXES))
+    still = speed <= 1e-12
+    samples = []
+    stops = 0
+    i = 1
+    n = len(t)
+    while i < n:
+        if still[i] and not still[i - 1]:
+            j = i
+            while j < n and still[j]:
+                j += 1
+            if t[j - 1] - t[i] >= min_standstill - 1e-12:
+                end = np.searchsorted(t, t[i] + window, side="right")
+                samples.append(defl[i:min(end, j)])
+                stops += 1
+            i = j
+        else:
+            i += 1
+    if not samples:
+        return float("nan"), 0
+    s = np.concatenate(samples)
+    return float(np.sqrt(np.mean(s ** 2))), stops
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--master", choices=["slaves", "fmpy-ssp", "libcosim"], default="slaves")
+    ap.add_argument("--stop-time", type=float)
+    ap.add_argument("--program", help="G-code file (own master only; the SSP runs the FMU's default)")
+    ap.add_argument("--profile", default=None, help="machine.profile (own master only)")
+    ap.add_argument("--out", default="out")
+    a = ap.parse_args()
+    if a.master == "slaves":
+        cnc, st = Unpacked(CNC_FMU), Unpacked(STRUCTURE_FMU)
+        params = {}
+        if a.program:
+            params["program"] = pathlib.Path(a.program).read_text()
+        if a.profile:
+            params["machine.profile"] = a.profile
+        res = cosim_slaves(cnc, st, params, stop_time=a.stop_time)
+        cnc.cleanup()
+        st.cleanup()
+    elif a.master == "fmpy-ssp":
+        res = cosim_fmpy_ssp(stop_time=a.stop_time or 2.0)
+    else:
+        res = cosim_libcosim(stop_time=a.stop_time or 2.0)
+    t = res["time"]
+    print(f"master {a.master}: {len(t)} steps of {H * 1e3:g} ms to t = {t[-1]:.3f} s")
+    for a_ in AXES:
+        d = res[f"structure.{a_}.deflection"]
+        f = res[f"cnc.{a_}.driveForce"]
+        print(f"  {a_}: max |drive force| {np.max(np.abs(f)):10.3f} N   max |deflection| "
+              f"{np.max(np.abs(d)) * 1e6:9.3f} µm")
+    rms, stops = residual_vibration(res)
+    print(f"  residual vibration after {stops} stops: RMS {rms * 1e6:.4f} µm")
+    out = pathlib.Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(2, 1, sharex=True, figsize=(9, 6))
+    for a_ in AXES:
+        ax[0].plot(t, res[f"cnc.{a_}.driveForce"], label=a_)
+        ax[1].plot(t, res[f"structure.{a_}.deflection"] * 1e6, label=a_)
+    ax[0].set_ylabel("drive force (N)")
+    ax[1].set_ylabel("frame deflection (µm)")
+    ax[1].set_xlabel("time (s)")
+    ax[0].legend()
+    fig.tight_layout()
+    fig.savefig(out / f"cosim_{a.master}.png", dpi=110)
+    print(f"plot: {out / f'cosim_{a.master}.png'}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,204 @@
+"""Small helpers shared by the examples and the Python tests: FMU paths, a named-variable wrapper
+around fmpy's FMU2Slave, and a stand-alone run of CncMotion.fmu until `program.finished`.
+
+Nothing here knows value references: every variable is looked up by name in modelDescription.xml,
+so the scripts follow the FMU when variables are added or renumbered.
+"""
+import ctypes
+import pathlib
+import shutil
+import tempfile
+
+import numpy as np
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import (
+    FMU2Slave,
+    fmi2CallbackAllocateMemoryTYPE,
+    fmi2CallbackFreeMemoryTYPE,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+)
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+FMU_DIR = ROOT / "target" / "fmu"
+CNC_FMU = FMU_DIR / "CncMotion.fmu"
+STRUCTURE_FMU = FMU_DIR / "MachineStructure.fmu"
+SSP = ROOT / "examples" / "cosim.ssp"
+DEFAULT_PROGRAM = ROOT / "resources" / "default.ngc"
+
+AXES = "xyz"
+PROFILES = ["scurve7", "quintic", "jerk15", "mixed57", "trapezoid"]
+
+_libc = ctypes.CDLL(None)
+_libc.calloc.restype = ctypes.c_void_p
+_libc.calloc.argtypes = [ctypes.c_size_t, ctypes.c_size_t]
+_libc.free.argtypes = [ctypes.c_void_p]
+
+
+class Unpacked:
+    """An FMU extracted once; many instances (threads too) share the directory."""
+
+    def __init__(self, fmu_path):
+        self.path = pathlib.Path(fmu_path)
+        self.md = read_model_description(str(self.path))
+        self.dir = extract(str(self.path), unzipdir=tempfile.mkdtemp(prefix=self.path.stem + "_"))
+        self.vars = {v.name: v for v in self.md.modelVariables}
+
+    def cleanup(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def names(self, causality):
+        return [v.name for v in self.md.modelVariables if v.causality == causality]
+
+    def enum_value(self, name, item):
+        """The integer of an Enumeration item (`machine.profile` = "trapezoid" → its index)."""
+        v = self.vars[name]
+        items = v.declaredType.items if v.declaredType is not None else []
+        for it in items:
+            if it.name == item:
+                return int(it.value)
+        raise KeyError(f"{name}: no item {item!r} in {[it.name for it in items]}")
+
+
+class Slave:
+    """One FMI 2.0 CS instance of an unpacked FMU, read and written by variable name."""
+
+    def __init__(self, unpacked, instance_name="instance", log=None):
+        self.u = unpacked
+        self.log = [] if log is None else log
+        self.fmu = FMU2Slave(guid=unpacked.md.guid, unzipDirectory=unpacked.dir,
+                             modelIdentifier=unpacked.md.coSimulation.modelIdentifier,
+                             instanceName=instance_name)
+        self._callbacks = self._make_callbacks()
+        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=True)
+        self.time = 0.0
+        self.steps = 0
+
+    def _make_callbacks(self):
+        log = self.log
+
+        def logger(env, instance, status, category, message):
+            # Messages are printf formats; FMUs escape a literal '%' as '%%'. fmpy's C logger proxy is
+            # not used: it keeps ONE global logger for all instances (a crash with instances in threads).
+            text = message.decode(errors="replace").replace("%%", "%") if message else ""
+            log.append((int(status), category.decode(errors="replace") if category else "", text))
+
+        cb = fmi2CallbackFunctions()
+        cb.logger = fmi2CallbackLoggerTYPE(logger)
+        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(_libc.calloc)
+        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(_libc.free)
+        return cb
+
+    # -- values by name ---------------------------------------------------------------------
+    def set(self, name, value):
+        v = self.u.vars[name]
+        vr = [v.valueReference]
+        if v.type == "Real":
+            self.fmu.setReal(vr, [float(value)])
+        elif v.type == "Integer":
+            self.fmu.setInteger(vr, [int(value)])
+        elif v.type == "Enumeration":
+            self.fmu.setInteger(vr, [self.u.enum_value(name, value) if isinstance(value, str) else int(value)])
+        elif v.type == "Boolean":
+            self.fmu.setBoolean(vr, [bool(value)])
+        elif v.type == "String":
+            self.fmu.setString(vr, [str(value)])
+        else:
+            raise TypeError(f"{name}: type {v.type}")
+
+    def set_many(self, values):
+        for k, val in (values or {}).items():
+            self.set(k, val)
+
+    def get(self, name):
+        v = self.u.vars[name]
+        vr = [v.valueReference]
+        if v.type == "Real":
+            return self.fmu.getReal(vr)[0]
+        if v.type in ("Integer", "Enumeration"):
+            return self.fmu.getInteger(vr)[0]
+        if v.type == "Boolean":
+            return bool(self.fmu.getBoolean(vr)[0])
+        return self.fmu.getString(vr)[0]
+
+    def reader(self, names):
+        """A function returning the current values of `names` (grouped by type, one call each)."""
+        groups = {}
+        for i, n in enumerate(names):
+            v = self.u.vars[n]
+            kind = "Integer" if v.type == "Enumeration" else v.type
+            groups.setdefault(kind, ([], []))
+            groups[kind][0].append(i)
+            groups[kind][1].append(v.valueReference)
+        get = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger, "Boolean": self.fmu.getBoolean}
+        out = [0.0] * len(names)
+
+        def read():
+            for kind, (idx, vrs) in groups.items():
+                for i, val in zip(idx, get[kind](vrs)):
+                    out[i] = float(val)
+            return list(out)
+
+        return read
+
+    # -- life cycle -------------------------------------------------------------------------
+    def initialize(self, parameters=None, start_time=0.0):
+        self.fmu.setupExperiment(startTime=start_time)
+        self.set_many(parameters)
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
+        self.time = start_time
+        self.steps = 0
+        self.t0 = start_time
+
+    def step(self, h):
+        # Communication points as t0 + k·h (no drift from summing h).
+        self.fmu.doStep(currentCommunicationPoint=self.time, communicationStepSize=h)
+        self.steps += 1
+        self.time = self.t0 + self.steps * h
+
+    def free(self):
+        try:
+            self.fmu.terminate()
+        finally:
+            self.fmu.freeInstance()
+
+
+def cnc_outputs(unpacked):
+    """The CncMotion outputs we record (all Real/Integer/Boolean outputs)."""
+    return [v.name for v in unpacked.md.modelVariables
+            if v.causality == "output" and v.type in ("Real", "Integer", "Boolean", "Enumeration")]
+
+
+def run_cnc(unpacked, parameters=None, h=1e-3, t_max=120.0, after=0.0, inputs=None, names=None):
+    """Run CncMotion alone until program.finished (plus `after` seconds); returns {name: array}.
+
+    `inputs(t, slave)` may set inputs before each step (feed hold, override)."""
+    s = Slave(unpacked, "cnc")
+    try:
+        s.initialize(parameters)
+        names = names or cnc_outputs(unpacked)
+        read = s.reader(names)
+        i_fin = names.index("program.finished")
+        rows = [[s.time] + read()]
+        t_end = None
+        while s.time < t_max:
+            if inputs is not None:
+                inputs(s.time, s)
+            s.step(h)
+            row = read()
+            rows.append([s.time] + row)
+            if t_end is None and row[i_fin]:
+                t_end = s.time
+            if t_end is not None and s.time >= t_end + after - 1e-12:
+                break
+        if t_end is None:
+            raise RuntimeError(f"program not finished after {t_max} s; log: {s.log[-5:]}")
+    finally:
+        s.free()
+    a = np.array(rows)
+    res = {"time": a[:, 0]}
+    for i, n in enumerate(names):
+        res[n] = a[:, i + 1]
+    res["t_finished"] = t_end
+    return res

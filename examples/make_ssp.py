@@ -1,0 +1,112 @@
+"""Build examples/cosim.ssp: CncMotion.fmu and MachineStructure.fmu with the two-way force coupling.
+
+    python examples/make_ssp.py [--cnc target/fmu/CncMotion.fmu] [--structure ...] [--out examples/cosim.ssp]
+
+Connections (SSP 1.0, read by fmpy.ssp and libcosim):
+    cnc.{x,y,z}.driveForce      → structure.{x,y,z}.driveForce
+    structure.{x,y,z}.loadForce → cnc.{x,y,z}.loadForce
+Besides the connected ports, the components list the outputs that fmpy.ssp should record
+(fmpy.ssp records every connector). Inputs that are not connected are not listed, because fmpy.ssp
+writes every listed input at each step. Start values stay those of the FMUs (no parameter bindings):
+fmpy.ssp does not apply bindings and both masters must run the same system.
+"""
+import argparse
+import pathlib
+import sys
+import zipfile
+from xml.sax.saxutils import quoteattr
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from fmpy import read_model_description  # noqa: E402
+
+from fmusim import AXES, CNC_FMU, SSP, STRUCTURE_FMU  # noqa: E402
+
+CNC_RECORDED = [f"{a}.command.{q}" for a in AXES for q in ("position", "velocity", "acceleration", "jerk")] + [
+    "path.feed", "path.distance", "program.line", "program.finished"] + [
+    f"{a}.{q}" for a in AXES for q in ("position", "followingError")]
+STRUCTURE_RECORDED = [f"{a}.{q}" for a in AXES for q in ("deflection", "acceleration")]
+
+SSD_NS = ('xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
+          'xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon"')
+
+
+def connections():
+    """(from component, from variable, to component, to variable) for the coupling."""
+    out = []
+    for a in AXES:
+        out.append(("cnc", f"{a}.driveForce", "structure", f"{a}.driveForce"))
+        out.append(("structure", f"{a}.loadForce", "cnc", f"{a}.loadForce"))
+    return out
+
+
+def _connector(var):
+    kind = var.causality
+    ty = {"Real": "Real", "Integer": "Integer", "Boolean": "Boolean", "Enumeration": "Integer"}[var.type]
+    return f'        <ssd:Connector name={quoteattr(var.name)} kind="{kind}"><ssc:{ty}/></ssd:Connector>'
+
+
+def component_xml(name, fmu_path, wanted):
+    md = read_model_description(str(fmu_path))
+    by_name = {v.name: v for v in md.modelVariables}
+    missing = [w for w in wanted if w not in by_name]
+    if missing:
+        raise SystemExit(f"{fmu_path.name}: no variables {missing}")
+    lines = [f'    <ssd:Component name="{name}" type="application/x-fmu-sharedlibrary" '
+             f'source="resources/{fmu_path.name}">', "      <ssd:Connectors>"]
+    lines += [_connector(by_name[w]) for w in wanted]
+    lines += ["      </ssd:Connectors>", "    </ssd:Component>"]
+    return "\n".join(lines)
+
+
+def ssd_text(cnc_fmu, structure_fmu, stop_time):
+    conns = connections()
+    ports = {"cnc": [], "structure": []}
+    for fc, fv, tc, tv in conns:
+        ports[fc].append(fv)
+        ports[tc].append(tv)
+    cnc_ports = ports["cnc"] + [n for n in CNC_RECORDED if n not in ports["cnc"]]
+    st_ports = ports["structure"] + [n for n in STRUCTURE_RECORDED if n not in ports["structure"]]
+    conn_xml = "\n".join(
+        f'    <ssd:Connection startElement="{fc}" startConnector="{fv}" endElement="{tc}" endConnector="{tv}"/>'
+        for fc, fv, tc, tv in conns)
+    return f"""<?xml version="1.0" encoding="UTF-8"?>
+<ssd:SystemStructureDescription {SSD_NS} version="1.0" name="CncOnFrame">
+  <ssd:System name="CncOnFrame" description="CNC motion controller driving a modal machine frame">
+  <ssd:Elements>
+{component_xml("cnc", cnc_fmu, cnc_ports)}
+{component_xml("structure", structure_fmu, st_ports)}
+  </ssd:Elements>
+  <ssd:Connections>
+{conn_xml}
+  </ssd:Connections>
+  </ssd:System>
+  <ssd:DefaultExperiment startTime="0.0" stopTime="{stop_time}"/>
+</ssd:SystemStructureDescription>
+"""
+
+
+def make_ssp(cnc_fmu=CNC_FMU, structure_fmu=STRUCTURE_FMU, out=SSP, stop_time=8.0):
+    cnc_fmu, structure_fmu, out = pathlib.Path(cnc_fmu), pathlib.Path(structure_fmu), pathlib.Path(out)
+    text = ssd_text(cnc_fmu, structure_fmu, stop_time)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = out.with_suffix(".tmp")
+    with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("SystemStructure.ssd", text)
+        z.write(cnc_fmu, f"resources/{cnc_fmu.name}")
+        z.write(structure_fmu, f"resources/{structure_fmu.name}")
+    tmp.replace(out)
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cnc", default=str(CNC_FMU))
+    ap.add_argument("--structure", default=str(STRUCTURE_FMU))
+    ap.add_argument("--out", default=str(SSP))
+    ap.add_argument("--stop-time", type=float, default=8.0)
+    a = ap.parse_args()
+    print(make_ssp(a.cnc, a.structure, a.out, a.stop_time))
+
+
+if __name__ == "__main__":
+    main()

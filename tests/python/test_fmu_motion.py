@@ -1,0 +1,197 @@
+"""CncMotion.fmu in fmpy: programs run to the end, command within the machine's limits for every
+profile kind, smooth (continuous acceleration, bounded jerk), feed hold and override, bad programs."""
+import re
+import subprocess
+
+import numpy as np
+import pytest
+
+import fmusim
+from conftest import CORPUS_PROGRAMS, ROOT
+
+REL = 1e-9
+PROGRAMS = [fmusim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS
+KINDS = fmusim.PROFILES
+
+
+def limits(cnc):
+    """Axis limits (SI) from the start values of the parameters."""
+    out = {}
+    for a in fmusim.AXES:
+        out[a] = {q: float(cnc.vars[f"{a}.max{Q}"].start) for q, Q in
+                  [("velocity", "Velocity"), ("acceleration", "Acceleration"), ("jerk", "Jerk")]}
+    return out
+
+
+def test_corpus_is_there():
+    assert len(CORPUS_PROGRAMS) >= 2, "../shared/corpus/*.ngc missing"
+
+
+_cache = {}
+
+
+def run(cnc, program, kind):
+    key = (str(program), kind)
+    if key not in _cache:
+        params = {"program": program.read_text(), "machine.profile": kind}
+        _cache[key] = fmusim.run_cnc(cnc, params, names=[
+            *(f"{a}.command.{q}" for a in fmusim.AXES for q in ("position", "velocity", "acceleration", "jerk")),
+            "path.feed", "path.distance", "program.line", "program.finished"])
+    return _cache[key]
+
+
+def last_point(program):
+    """The last programmed X Y Z (mm) of a program made of absolute G0/G1/G2/G3 moves."""
+    pos = {"X": 0.0, "Y": 0.0, "Z": 0.0}
+    for line in program.read_text().splitlines():
+        line = re.sub(r"\(.*?\)", "", line).split(";")[0].upper()
+        for w, val in re.findall(r"([XYZ])\s*(-?[0-9.]+)", line):
+            pos[w] = float(val)
+    return [pos[a] for a in "XYZ"]
+
+
+@pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
+def test_program_runs_to_finished(cnc, program):
+    res = run(cnc, program, "scurve7")
+    assert res["program.finished"][-1] == 1.0
+    end = [res[f"{a}.command.position"][-1] * 1e3 for a in fmusim.AXES]
+    np.testing.assert_allclose(end, last_point(program), atol=1e-9)
+    # At the end the command is at rest.
+    for a in fmusim.AXES:
+        assert res[f"{a}.command.velocity"][-1] == 0.0
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
+def test_command_within_axis_limits(cnc, program, kind):
+    res = run(cnc, program, kind)
+    lim = limits(cnc)
+    for a in fmusim.AXES:
+        for q in ("velocity", "acceleration", "jerk"):
+            if q == "jerk" and kind == "trapezoid":
+                continue  # the trapezoid has no jerk limit
+            peak = np.max(np.abs(res[f"{a}.command.{q}"]))
+            assert peak <= lim[a][q] * (1 + REL), f"{a} {q}: {peak} > {lim[a][q]}"
+
+
+@pytest.mark.parametrize("kind", [k for k in KINDS if k != "trapezoid"])
+@pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
+def test_acceleration_continuous_jerk_bounded(cnc, program, kind):
+    """Between two ticks a changes by at most ∫|j| ≤ J·T: no acceleration steps anywhere."""
+    res = run(cnc, program, kind)
+    lim = limits(cnc)
+    period = float(cnc.vars["machine.interpolationPeriod"].start)
+    assert abs(np.diff(res["time"])[0] - period) < 1e-12
+    for a in fmusim.AXES:
+        acc = res[f"{a}.command.acceleration"]
+        step = np.max(np.abs(np.diff(acc)))
+        bound = lim[a]["jerk"] * period * (1 + 1e-9) + 1e-9 * lim[a]["acceleration"]
+        assert step <= bound, f"{a}: |Δa| {step} per tick > J·T {bound}"
+        assert np.all(np.isfinite(res[f"{a}.command.jerk"]))
+        assert acc[0] == 0.0 and acc[-1] == 0.0
+
+
+def test_trapezoid_has_acceleration_steps(cnc):
+    """The baseline really is a trapezoid: acceleration jumps (what the smoothness test guards against)."""
+    res = run(cnc, fmusim.DEFAULT_PROGRAM, "trapezoid")
+    lim = limits(cnc)
+    period = float(cnc.vars["machine.interpolationPeriod"].start)
+    jumps = max(np.max(np.abs(np.diff(res[f"{a}.command.acceleration"]))) for a in "xy")
+    assert jumps > 2 * lim["x"]["jerk"] * period
+
+
+LINE = "G21 G90 G17\nG1 X100 F3000\nM30\n"  # 100 mm at 50 mm/s
+
+
+def _line_run(cnc, inputs=None, override=None):
+    params = {"program": LINE}
+    if override is not None:
+        params["feedOverride"] = override
+    return fmusim.run_cnc(cnc, params, inputs=inputs, names=[
+        "x.command.position", "x.command.velocity", "x.command.acceleration", "x.command.jerk",
+        "path.feed", "program.finished"])
+
+
+def test_feed_override_halves_cruise_feed(cnc):
+    full = _line_run(cnc)
+    half = _line_run(cnc, override=0.5)
+    lim = limits(cnc)
+    period = float(cnc.vars["machine.interpolationPeriod"].start)
+
+    def cruise(r):  # the feed in the middle of the move
+        t = r["time"]
+        return np.median(r["path.feed"][(t > 0.3 * r["t_finished"]) & (t < 0.7 * r["t_finished"])])
+
+    assert abs(cruise(full) - 0.05) < 1e-9
+    assert abs(cruise(half) - 0.025) < 1e-9
+    assert abs(half["x.command.position"][-1] - 0.1) < 1e-12
+    assert half["t_finished"] > 1.9 * full["t_finished"] - 0.2
+    # Override changes stay within the machine's limits.
+    acc = half["x.command.acceleration"]
+    assert np.max(np.abs(half["x.command.jerk"])) <= lim["x"]["jerk"] * (1 + REL)
+    assert np.max(np.abs(np.diff(acc))) <= lim["x"]["jerk"] * period * (1 + 1e-9) + 1e-9
+    # An override given before the start applies from the first tick: no overshoot above 50 %.
+    assert np.max(half["path.feed"]) <= 0.025 * (1 + 1e-9), np.max(half["path.feed"])
+
+
+def test_feed_hold_stops_smoothly_stays_and_resumes(cnc):
+    t_hold, t_release = 0.8, 1.6
+
+    def inputs(t, s):
+        s.set("feedHold", t_hold - 1e-9 <= t < t_release - 1e-9)
+
+    free = _line_run(cnc)
+    res = _line_run(cnc, inputs=inputs)
+    t, feed, pos = res["time"], res["path.feed"], res["x.command.position"]
+    lim = limits(cnc)
+    period = float(cnc.vars["machine.interpolationPeriod"].start)
+    assert abs(feed[np.searchsorted(t, t_hold) - 1] - 0.05) < 1e-9  # cruising when the hold comes
+    held = (t > t_hold + 0.3) & (t < t_release)  # stopped well inside the hold
+    assert np.all(feed[held] == 0.0)
+    assert np.ptp(pos[held]) == 0.0
+    stop = (t >= t_hold) & (t < t_release)
+    assert np.all(np.diff(feed[stop]) <= 1e-12), "feed rises during the hold"
+    # Smooth: no acceleration step when stopping and restarting, limits kept.
+    acc = res["x.command.acceleration"]
+    assert np.max(np.abs(np.diff(acc))) <= lim["x"]["jerk"] * period * (1 + 1e-9) + 1e-9
+    assert np.max(np.abs(acc)) <= lim["x"]["acceleration"] * (1 + REL)
+    assert np.max(np.abs(res["x.command.jerk"])) <= lim["x"]["jerk"] * (1 + REL)
+    # Resumes to the programmed feed and ends where programmed, later than without the hold.
+    after = t > t_release + 0.3
+    assert abs(np.max(feed[after]) - 0.05) < 1e-9
+    assert abs(pos[-1] - 0.1) < 1e-12
+    assert res["t_finished"] > free["t_finished"] + 0.5
+
+
+BAD = {
+    "syntax": "G21 G90\nG1 X1 F100\nG1 X2 Y\n",
+    "g41": "G21 G90\nG1 X1 F100\nG41 D1 X2\n",
+    "arc": "G21 G90 G17\nG1 X0 Y0 F100\nG2 X10 Y0 I1 J0\n",
+}
+
+
+@pytest.mark.parametrize("case", BAD)
+def test_bad_program_error_at_initialization(cnc, cli, tmp_path, case):
+    from fmpy.fmi1 import FMICallException
+    text = BAD[case]
+    prog = tmp_path / f"{case}.ngc"
+    prog.write_text(text)
+    ref = subprocess.run([cli, "run", str(prog)], capture_output=True, text=True)
+    assert ref.returncode == 2, ref.stderr
+    m = re.match(re.escape(str(prog)) + r":(\d+):(\d+): (.*)", ref.stderr.strip())
+    assert m, ref.stderr
+    where, what = f"{m.group(1)}:{m.group(2)}", m.group(3)
+    if case == "g41":
+        assert where == "3:1"
+    s = fmusim.Slave(cnc, "bad")
+    try:
+        s.fmu.setupExperiment(startTime=0.0)
+        s.set("program", text)
+        s.fmu.enterInitializationMode()
+        with pytest.raises(FMICallException) as err:
+            s.fmu.exitInitializationMode()
+        assert err.value.status == 3  # fmi2Error
+        msgs = [m_ for _, _, m_ in s.log]
+        assert any(where in m_ and what in m_ for m_ in msgs), msgs
+    finally:
+        s.fmu.freeInstance()

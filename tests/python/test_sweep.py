@@ -1,0 +1,16 @@
+"""The Dask sweep on a 2-worker LocalCluster gives the serial results, case for case."""
+import fmusim
+import sweep
+from conftest import CORPUS_PROGRAMS  # noqa: F401
+
+
+def test_sweep_local_cluster_equals_serial(fmus, tmp_path):
+    prog = tmp_path / "short.ngc"
+    prog.write_text("G21 G90 G17 G64\nG1 X20 F3000\nG1 Y10\nG0 X0 Y0\nM30\n")
+    case_list = sweep.cases([prog], ["scurve7", "trapezoid"], [20000.0, 80000.0])
+    serial = sweep.run_serial(case_list)
+    parallel = sweep.run_dask(case_list, n_workers=2)
+    assert parallel == serial
+    # The sweep sees the jerk limit: a lower limit takes longer.
+    t = {(r["profile"], r["jerk_mm_s3"]): r["cycle_time_s"] for r in serial}
+    assert t[("scurve7", 20000.0)] > t[("scurve7", 80000.0)]
