@@ -3,8 +3,10 @@
 
 use crate::config::Machine;
 use crate::error::ProgramError;
+use crate::feed::{self, BlockRequest, FeedLaw, Profile};
 use crate::gcode::{Motion, Reader};
 use crate::interp::{Interpolator, Tick};
+use crate::path::Segment;
 use crate::path::{PathBlock, PathBuilder};
 use crate::plan::{Planned, Planner};
 use crate::servo::{AxisCommand, AxisState, ServoAxis};
@@ -18,75 +20,6 @@ const STATE_VERSION: u32 = 1;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 4;
 const QUEUE_TARGET: usize = 8;
-
-/// Feed-override tracker: the time-scaling factor k = dσ/dt (σ the planned path time) follows
-/// its target with bounded k̇ and k̈, so an override or a hold changes the speed jerk-limited:
-/// ṡ = s'k, s̈ = s''k² + s'k̇, s⃛ = s'''k³ + 3s''kk̇ + s'k̈.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-struct TimeScale {
-    k: f64,
-    k_dot: f64,
-    k_ddot: f64,
-    k_dot_max: f64,
-    k_ddot_max: f64,
-}
-
-impl TimeScale {
-    fn new(machine: &Machine) -> TimeScale {
-        // Half the slowest axis' acceleration and jerk at the machine's top feed, so the override
-        // transient adds at most that much to a planned motion.
-        let a = machine
-            .axes
-            .iter()
-            .map(|x| x.max_acceleration)
-            .fold(f64::INFINITY, f64::min);
-        let j = machine
-            .axes
-            .iter()
-            .map(|x| x.max_jerk)
-            .fold(f64::INFINITY, f64::min);
-        let v_ref = machine.max_feed.max(1e-9);
-        TimeScale {
-            k: 1.0,
-            k_dot: 0.0,
-            k_ddot: 0.0,
-            k_dot_max: 0.5 * a / v_ref,
-            k_ddot_max: 0.5 * j / v_ref,
-        }
-    }
-
-    /// Advance by one period T toward `target`; returns the path time elapsed, ∫k dt.
-    fn step(&mut self, target: f64, period: f64) -> f64 {
-        let k_old = self.k;
-        let e = target - self.k;
-        let (jd, am) = (self.k_ddot_max, self.k_dot_max);
-        if e.abs() < 1e-12 && self.k_dot.abs() < 1e-12 {
-            self.k = target;
-            self.k_dot = 0.0;
-            self.k_ddot = 0.0;
-            return period * 0.5 * (k_old + self.k);
-        }
-        // Distance the rate needs to come back to zero at full k̈: k̇²/(2 k̈_max).
-        let stopping = self.k_dot * self.k_dot / (2.0 * jd) + self.k_dot.abs() * period;
-        let toward = self.k_dot * e > 0.0;
-        let k_ddot = if toward && e.abs() <= stopping {
-            -self.k_dot.signum() * jd
-        } else {
-            e.signum() * jd
-        };
-        let mut k_dot = (self.k_dot + k_ddot * period).clamp(-am, am);
-        let mut k = self.k + 0.5 * (self.k_dot + k_dot) * period;
-        // Land on the target instead of overshooting it.
-        if (target - k) * e <= 0.0 {
-            k = target;
-            k_dot = 0.0;
-        }
-        self.k_ddot = (k_dot - self.k_dot) / period;
-        self.k_dot = k_dot;
-        self.k = k.clamp(0.0, 1.0);
-        period * 0.5 * (k_old + self.k)
-    }
-}
 
 /// Runs one program on one machine.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -106,7 +39,12 @@ pub struct Engine {
     /// Number of interpolation ticks done (tick n is at n·T).
     ticks: u64,
     time: f64,
-    scale: TimeScale,
+    /// An override or hold change waits for a point where the path acceleration is zero.
+    replan_pending: bool,
+    /// The hold has been planned: the path stops at the end of the queued deceleration.
+    hold_applied: bool,
+    /// The rest of the path during a hold, planned again from rest at the release.
+    held: Vec<PathBlock>,
     servo: bool,
     /// The three drives when the servo model is on, and the time they have reached.
     drives: Option<Vec<ServoAxis>>,
@@ -140,7 +78,9 @@ impl Engine {
             tick,
             ticks: 0,
             time: 0.0,
-            scale: TimeScale::new(machine),
+            replan_pending: false,
+            hold_applied: false,
+            held: Vec::new(),
             servo: false,
             drives: None,
             servo_time: 0.0,
@@ -229,17 +169,65 @@ impl Engine {
         self.tick.finished
     }
 
-    /// Feed override factor (0…2), applied with jerk-limited speed changes: below 1 by time
-    /// scaling of the planned motion, above 1 by planning the blocks read from now on faster.
+    /// Feed override factor (0…2). The path is re-planned from the next point where its
+    /// acceleration is zero (a cruise phase or a block end) with the feeds scaled: a speed change
+    /// by the feed law itself, so jerk-limited and within every limit. 0 acts as a feed hold.
     pub fn set_feed_override(&mut self, k: f64) {
         let k = if k.is_finite() { k.clamp(0.0, 2.0) } else { 1.0 };
-        self.feed_override = k;
-        self.planner.set_feed_scale(k.max(1.0));
+        if k != self.feed_override {
+            let was_holding = self.holding();
+            self.feed_override = k;
+            if was_holding && !self.holding() {
+                self.release();
+            }
+            self.replan_pending = true;
+        }
     }
 
-    /// Feed hold: decelerate to standstill on the path within the limits; release resumes.
+    /// Feed hold: decelerate to standstill on the path within the limits (planned from the next
+    /// point of zero acceleration); release resumes from there.
     pub fn set_feed_hold(&mut self, hold: bool) {
-        self.feed_hold = hold;
+        if hold != self.feed_hold {
+            self.feed_hold = hold;
+            if hold {
+                self.replan_pending = true;
+            } else {
+                self.release();
+            }
+        }
+    }
+
+    /// End of a hold: the rest of the path is planned again from where the path stopped.
+    fn release(&mut self) {
+        if self.holding() {
+            return;
+        }
+        self.replan_pending = false;
+        if !self.hold_applied {
+            return;
+        }
+        self.hold_applied = false;
+        let v_start = if self.interp.idle() {
+            0.0
+        } else {
+            self.interp.kin().v
+        };
+        // Still slowing down when released: the ramp in the queue finishes first.
+        let mut blocks: Vec<PathBlock> = std::mem::take(&mut self.held);
+        blocks.extend(self.planner.restart(v_start));
+        let scale = self.feed_override.max(1e-3);
+        self.planner.set_feed_scale(scale);
+        let v_entry = self.queue.back().map_or(v_start, |p| p.v_out);
+        let _ = self.planner.restart(v_entry);
+        let mut out = std::mem::take(&mut self.queue);
+        for b in blocks {
+            self.planner.push(b, &mut out);
+        }
+        self.queue = out;
+    }
+
+    fn holding(&self) -> bool {
+        self.feed_hold || self.feed_override == 0.0
     }
 
     /// External force on each axis' table from a structure model (N).
@@ -303,46 +291,150 @@ impl Engine {
     /// One interpolation tick at time `t`.
     fn interpolate(&mut self, t: f64) -> Result<(), ProgramError> {
         let period = self.machine.interpolation_period;
-        let target = if self.feed_hold {
-            0.0
-        } else {
-            self.feed_override.min(1.0)
-        };
-        let mut dt = self.scale.step(target, period);
+        if self.replan_pending {
+            self.replan()?;
+        }
         // Keep a few planned segments ahead, reading at most a few blocks per tick, so that no
         // single tick pays for a whole look-ahead window.
-        for _ in 0..READ_AHEAD_PER_TICK {
-            if self.queue.len() >= QUEUE_TARGET || !self.pull()? {
-                break;
+        if !self.hold_applied {
+            for _ in 0..READ_AHEAD_PER_TICK {
+                if self.queue.len() >= QUEUE_TARGET || !self.pull()? {
+                    break;
+                }
             }
         }
+        let mut dt = period;
         loop {
-            dt = self.interp.advance(dt, &mut self.queue);
-            if dt <= 0.0 || !self.refill()? {
+            let fence = self.hold_applied && self.queue.is_empty();
+            dt = self.interp.advance_fenced(dt, &mut self.queue, fence);
+            if dt <= 0.0 || self.hold_applied || !self.refill()? {
                 break;
             }
         }
-        if self.interp.idle() && self.queue.is_empty() {
+        if self.interp.idle() && self.queue.is_empty() && !self.hold_applied {
             self.refill()?;
         }
-        let finished = self.interp.idle() && self.queue.is_empty() && self.program_done;
-        let mut tick = self.interp.sample(t, finished);
-        // Time scaling by the override (chain rule in k = dσ/dt).
-        let TimeScale { k, k_dot, k_ddot, .. } = self.scale;
-        for i in 0..3 {
-            let (v, a, j) = (tick.v[i], tick.a[i], tick.j[i]);
-            tick.v[i] = v * k;
-            tick.a[i] = a * k * k + v * k_dot;
-            tick.j[i] = j * k * k * k + 3.0 * a * k * k_dot + v * k_ddot;
-        }
-        let (v, a, j) = (tick.feed, tick.path_acceleration, tick.path_jerk);
-        tick.feed = v * k;
-        tick.path_acceleration = a * k * k + v * k_dot;
-        tick.path_jerk = j * k * k * k + 3.0 * a * k * k_dot + v * k_ddot;
+        let finished = self.interp.idle()
+            && self.queue.is_empty()
+            && self.program_done
+            && self.planner.pending() == 0
+            && self.held.is_empty();
+        let tick = self.interp.sample(t, finished);
         if finished && self.finish_time.is_none() {
             self.finish_time = Some(t);
         }
         self.tick = tick;
+        Ok(())
+    }
+
+    /// Re-plan from the current point for a new override or a hold, if the path acceleration is
+    /// zero here (else wait for the next tick). What is left of the current block is cut off; if
+    /// the speed must come down, a ramp of the feed law brings it down over the shortest distance
+    /// (the rest of the block, if that is too short, and the next block continues it); then the
+    /// rest of the path goes through a fresh look-ahead at the new feed scale.
+    fn replan(&mut self) -> Result<(), ProgramError> {
+        let a_tol = 1e-9
+            * self
+                .machine
+                .axes
+                .iter()
+                .map(|x| x.max_acceleration)
+                .fold(0.0, f64::max);
+        let kind = self.machine.profile;
+        let mut head: VecDeque<Planned> = VecDeque::new();
+        let (rest, v_cur) = match self.interp.cut(a_tol) {
+            Some((rest, v)) => (Some(rest), v),
+            None if self.interp.idle() => match self.queue.front() {
+                Some(p) if p.block.constant_speed => return Ok(()),
+                Some(p) => (None, p.v_in),
+                None => (None, 0.0),
+            },
+            None => return Ok(()),
+        };
+        let hold = self.holding();
+        let scale = if hold {
+            self.planner.feed_scale()
+        } else {
+            self.feed_override
+        };
+        let mut blocks: Vec<PathBlock> = Vec::new();
+        let mut v_start = v_cur;
+        let mut settled = true;
+        let mut pending_rest = rest;
+        if pending_rest.is_none() && !self.queue.is_empty() {
+            // At a block boundary: the next queued block plays the part of the rest.
+            pending_rest = self.queue.pop_front().map(|p| p.block);
+        }
+        if let Some(rest) = pending_rest {
+            let target = if hold {
+                0.0
+            } else {
+                (rest.v_feed * scale).min(rest.limits.v_max)
+            };
+            let length = rest.segment.length();
+            if v_cur > target * (1.0 + 1e-12) && !matches!(rest.segment, Segment::Dwell { .. }) {
+                let d = feed::ramp_distance(kind, v_cur, target, &rest.limits);
+                let request = |length: f64| BlockRequest {
+                    length,
+                    v_in: v_cur,
+                    v_out: target,
+                    v_feed: v_cur,
+                    limits: rest.limits,
+                };
+                if d < length {
+                    // Slow down over d, then the rest of the block at the new feed.
+                    if let (Some(a), Some(b)) = (rest.segment.part(0.0, d), rest.segment.part(d, length - d))
+                    {
+                        let profile = Profile::plan(kind, &request(d));
+                        let block = PathBlock {
+                            segment: a,
+                            v_end_max: target,
+                            ..rest
+                        };
+                        head.push_back(Planned {
+                            block,
+                            v_in: v_cur,
+                            v_out: target,
+                            profile,
+                        });
+                        blocks.push(PathBlock { segment: b, ..rest });
+                        v_start = target;
+                    } else {
+                        blocks.push(rest);
+                    }
+                } else {
+                    // The whole rest of the block slows down as hard as the law allows.
+                    let profile = Profile::plan(kind, &request(length));
+                    v_start = profile.v_end();
+                    head.push_back(Planned {
+                        block: rest,
+                        v_in: v_cur,
+                        v_out: v_start,
+                        profile,
+                    });
+                    settled = v_start <= target * (1.0 + 1e-12);
+                }
+            } else {
+                blocks.push(rest);
+            }
+        }
+        blocks.extend(self.queue.drain(..).map(|p| p.block));
+        blocks.extend(self.planner.restart(v_start));
+        self.replan_pending = !settled;
+        if hold && settled {
+            // Only the deceleration runs; the rest of the path waits for the release.
+            self.hold_applied = true;
+            self.held.extend(blocks);
+            self.queue = head;
+            return Ok(());
+        }
+        if !hold {
+            self.planner.set_feed_scale(scale);
+        }
+        for b in blocks {
+            self.planner.push(b, &mut head);
+        }
+        self.queue = head;
         Ok(())
     }
 

@@ -139,13 +139,49 @@ proptest! {
     }
 }
 
+/// Steps the engine and checks every tick against the axis limits (analytic a and j, and the
+/// change of a per tick against J·T).
+fn step_checked(e: &mut Engine, last_a: &mut [f64; 3]) {
+    let t = *e.step().unwrap();
+    let m = e.machine().clone();
+    for i in 0..3 {
+        let lim = &m.axes[i];
+        assert!(
+            t.v[i].abs() <= lim.max_velocity * (1.0 + REL),
+            "v {} at {}",
+            t.v[i],
+            t.t
+        );
+        assert!(
+            t.a[i].abs() <= lim.max_acceleration * (1.0 + REL),
+            "a {} at {}",
+            t.a[i],
+            t.t
+        );
+        assert!(
+            t.j[i].abs() <= lim.max_jerk * (1.0 + REL),
+            "j {} at {}",
+            t.j[i],
+            t.t
+        );
+        let da = (t.a[i] - last_a[i]).abs();
+        assert!(
+            da <= lim.max_jerk * m.interpolation_period * (1.0 + REL) + 1e-12,
+            "Δa {da} at {}",
+            t.t
+        );
+        last_a[i] = t.a[i];
+    }
+}
+
 #[test]
 fn override_and_hold_change_speed_smoothly_and_resume() {
     let machine = Machine::default();
     let text = "G21 G90\nG1 X500 F6000\nM30\n";
     let mut e = Engine::new(Arc::from(text), "hold.ngc", &machine).unwrap();
+    let mut a = [0.0; 3];
     for _ in 0..1500 {
-        e.step().unwrap();
+        step_checked(&mut e, &mut a);
     }
     let cruise = e.tick().feed;
     assert!(
@@ -156,7 +192,7 @@ fn override_and_hold_change_speed_smoothly_and_resume() {
     let mut last = e.tick().p[0];
     let mut stopped = false;
     for _ in 0..2000 {
-        e.step().unwrap();
+        step_checked(&mut e, &mut a);
         assert!(e.tick().p[0] >= last, "never moves backwards");
         last = e.tick().p[0];
         if e.tick().feed == 0.0 {
@@ -167,23 +203,29 @@ fn override_and_hold_change_speed_smoothly_and_resume() {
     assert!(stopped, "hold stops");
     let held = e.tick().p[0];
     for _ in 0..100 {
-        e.step().unwrap();
+        step_checked(&mut e, &mut a);
     }
     assert_eq!(e.tick().p[0], held, "stays on the path while held");
     e.set_feed_hold(false);
     e.set_feed_override(0.5);
     for _ in 0..2000 {
-        e.step().unwrap();
+        step_checked(&mut e, &mut a);
     }
     assert!(
         (e.tick().feed - 0.05).abs() < 1e-9,
         "50 % override, got {}",
         e.tick().feed
     );
+    // Back to 150 % while cruising: up, then the path's own stop at the end, all within limits.
+    e.set_feed_override(1.5);
     while !e.finished() {
-        e.step().unwrap();
+        step_checked(&mut e, &mut a);
     }
     assert_eq!(e.tick().p, [0.5, 0.0, 0.0]);
+    assert!(
+        (e.tick().distance - 0.5).abs() < 1e-12,
+        "nothing of the path lost or doubled"
+    );
 }
 
 #[test]

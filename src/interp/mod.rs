@@ -112,9 +112,17 @@ impl Interpolator {
     /// Advance the path time by `dt` (s), taking blocks from `queue` as the previous ones end.
     /// Returns the time not used because the queue ran dry (0 when all of `dt` was used): the
     /// caller refills the queue and calls again with it.
-    pub fn advance(&mut self, mut dt: f64, queue: &mut VecDeque<Planned>) -> f64 {
+    pub fn advance(&mut self, dt: f64, queue: &mut VecDeque<Planned>) -> f64 {
+        self.advance_fenced(dt, queue, false)
+    }
+
+    /// As `advance`; with `fence`, no new block is started (a feed hold has stopped the path).
+    pub fn advance_fenced(&mut self, mut dt: f64, queue: &mut VecDeque<Planned>, fence: bool) -> f64 {
         loop {
             if self.current.is_none() {
+                if fence {
+                    return 0.0;
+                }
                 let Some(planned) = queue.pop_front() else {
                     return dt;
                 };
@@ -139,6 +147,45 @@ impl Interpolator {
                 return 0.0;
             }
         }
+    }
+
+    /// Cut the current block where it is, if its acceleration is zero there (a cruise phase) and it
+    /// is not a constant-speed transition: the part done is booked, the rest comes back as a
+    /// segment with the speed it is entered at. At a block boundary (no current block) nothing is
+    /// cut and `None` comes back too; the caller re-plans from the queue.
+    pub fn cut(&mut self, a_tolerance: f64) -> Option<(crate::path::PathBlock, f64)> {
+        let c = self.current.as_ref()?;
+        let block = c.planned.block;
+        if block.constant_speed || matches!(block.segment, Segment::Dwell { .. }) {
+            return None;
+        }
+        let k = c.planned.profile.at(c.tau);
+        if k.a.abs() > a_tolerance {
+            return None;
+        }
+        let length = block.segment.length();
+        let s = k.s.clamp(0.0, length);
+        let rest = block.segment.part(s, length - s)?;
+        self.time_done += c.tau;
+        self.distance_done += s;
+        self.last_line = block.line;
+        self.rest = block.segment.eval(s).p;
+        self.last_tangent = block.segment.eval(s).d1;
+        self.current = None;
+        Some((
+            crate::path::PathBlock {
+                segment: rest,
+                ..block
+            },
+            k.v,
+        ))
+    }
+
+    /// Speed and acceleration now (0 at rest).
+    pub fn kin(&self) -> Kin {
+        self.current
+            .as_ref()
+            .map_or(Kin::default(), |c| c.planned.profile.at(c.tau))
     }
 
     fn finish_block(&mut self, c: &Current) {

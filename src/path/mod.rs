@@ -49,6 +49,60 @@ pub enum Segment {
         at: Vec3,
         seconds: f64,
     },
+    /// The piece [s0, s0 + len] of a line, arc or transition: what is left of a block when a
+    /// feed hold or an override change re-plans from the middle of it.
+    Part {
+        whole: Whole,
+        s0: f64,
+        len: f64,
+        /// The part runs to the end of the whole segment (its end point is then exact).
+        to_end: bool,
+    },
+}
+
+/// A segment that can be cut into parts.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Whole {
+    Line(Line),
+    Arc(Arc),
+    Blend(Blend),
+}
+
+impl Whole {
+    fn segment(&self) -> Segment {
+        match *self {
+            Whole::Line(l) => Segment::Line(l),
+            Whole::Arc(a) => Segment::Arc(a),
+            Whole::Blend(b) => Segment::Blend(b),
+        }
+    }
+}
+
+impl Segment {
+    /// The piece [from, from + len] of this segment (None for a dwell).
+    pub fn part(&self, from: f64, len: f64) -> Option<Segment> {
+        let (whole, s0, to_end_of_whole) = match *self {
+            Segment::Line(l) => (Whole::Line(l), 0.0, self.length()),
+            Segment::Arc(a) => (Whole::Arc(a), 0.0, self.length()),
+            Segment::Blend(b) => (Whole::Blend(b), 0.0, self.length()),
+            Segment::Part { whole, s0, .. } => (whole, s0, whole.segment().length() - s0),
+            Segment::Dwell { .. } => return None,
+        };
+        let to_end = from + len >= to_end_of_whole * (1.0 - 1e-15) && self.ends_whole();
+        Some(Segment::Part {
+            whole,
+            s0: s0 + from,
+            len,
+            to_end,
+        })
+    }
+
+    fn ends_whole(&self) -> bool {
+        match self {
+            Segment::Part { to_end, .. } => *to_end,
+            _ => true,
+        }
+    }
 }
 
 impl Segment {
@@ -58,6 +112,7 @@ impl Segment {
             Segment::Arc(a) => a.length(),
             Segment::Blend(b) => b.length,
             Segment::Dwell { .. } => 0.0,
+            Segment::Part { len, .. } => *len,
         }
     }
     /// Point and derivatives at arc length s (clamped to the segment).
@@ -70,6 +125,21 @@ impl Segment {
                 p: *at,
                 ..Geo::default()
             },
+            Segment::Part {
+                whole,
+                s0,
+                len,
+                to_end,
+            } => {
+                let w = whole.segment();
+                if *to_end && s >= *len {
+                    let mut g = w.eval(w.length());
+                    g.p = w.end();
+                    g
+                } else {
+                    w.eval(s0 + s.clamp(0.0, *len))
+                }
+            }
         }
     }
     pub fn start(&self) -> Vec3 {
@@ -86,6 +156,19 @@ impl Segment {
             Segment::Arc(a) => a.end,
             Segment::Blend(b) => b.end(),
             Segment::Dwell { at, .. } => *at,
+            Segment::Part {
+                whole,
+                s0,
+                len,
+                to_end,
+            } => {
+                let w = whole.segment();
+                if *to_end {
+                    w.end()
+                } else {
+                    w.eval(s0 + len).p
+                }
+            }
         }
     }
 }

@@ -38,6 +38,8 @@ struct Entry {
     v_in_lim: f64,
     /// Largest entry speed from which the segment can stop within its length (fixed, cached).
     v_in_stop: f64,
+    /// Feed for this segment with the override applied (the block keeps the programmed one).
+    v_feed: f64,
 }
 
 /// The bounded look-ahead window.
@@ -50,8 +52,10 @@ pub struct Planner {
     v_prev: f64,
     /// Junction limit after the last segment pushed (0 before the first).
     junction_prev: f64,
-    /// Feed multiplier for segments pushed from now on (feed override above 100 %).
+    /// Feed multiplier for segments pushed from now on (feed override).
     feed_scale: f64,
+    /// After a restart from the middle of the path: the entry speed of the next segment pushed.
+    forced_entry: Option<f64>,
 }
 
 /// Iterations of the bounded bisection (interval shrinks by 2⁻⁶⁰, below f64 resolution).
@@ -66,33 +70,51 @@ impl Planner {
             v_prev: 0.0,
             junction_prev: 0.0,
             feed_scale: 1.0,
+            forced_entry: None,
         }
+    }
+
+    /// Start again from a point of the path reached at speed `v_start` (acceleration zero): the
+    /// segments waiting in the window come back to the caller, to be pushed again after what is
+    /// left of the current one; the next segment pushed enters at `v_start`.
+    pub fn restart(&mut self, v_start: f64) -> Vec<PathBlock> {
+        let blocks = self.window.drain(..).map(|e| e.block).collect();
+        self.v_prev = v_start;
+        self.junction_prev = f64::INFINITY;
+        self.forced_entry = Some(v_start);
+        blocks
     }
 
     pub fn kind(&self) -> ProfileKind {
         self.kind
     }
 
-    /// Scale the feed of segments pushed from now on (≥ 1; capped by each segment's limits).
+    /// Scale the feed of segments pushed from now on (0 < scale ≤ 2; capped by each segment's
+    /// limits).
     pub fn set_feed_scale(&mut self, scale: f64) {
-        self.feed_scale = scale.clamp(1.0, 2.0);
+        self.feed_scale = scale.clamp(1e-3, 2.0);
+    }
+
+    pub fn feed_scale(&self) -> f64 {
+        self.feed_scale
     }
 
     /// Take one segment; emit planned segments to `out` when the window is full.
-    pub fn push(&mut self, mut block: PathBlock, out: &mut VecDeque<Planned>) {
-        if self.feed_scale != 1.0 && !block.constant_speed {
-            block.v_feed = (block.v_feed * self.feed_scale).min(block.limits.v_max);
-        }
+    pub fn push(&mut self, block: PathBlock, out: &mut VecDeque<Planned>) {
+        let v_feed = if self.feed_scale != 1.0 {
+            (block.v_feed * self.feed_scale).min(block.limits.v_max)
+        } else {
+            block.v_feed
+        };
         let dwell = matches!(block.segment, Segment::Dwell { .. });
-        let mut v_in_cap = block.v_feed.min(self.junction_prev);
+        let mut v_in_cap = v_feed.min(self.junction_prev);
         if dwell {
             v_in_cap = 0.0;
         }
-        self.junction_prev = if dwell {
-            0.0
-        } else {
-            block.v_end_max.min(block.v_feed)
-        };
+        if let Some(v) = self.forced_entry.take() {
+            v_in_cap = if dwell { 0.0 } else { v };
+        }
+        self.junction_prev = if dwell { 0.0 } else { block.v_end_max.min(v_feed) };
         let v_in_stop = if dwell || block.constant_speed {
             0.0
         } else {
@@ -103,6 +125,7 @@ impl Planner {
             v_in_cap,
             v_in_lim: f64::NAN,
             v_in_stop,
+            v_feed,
         });
         // A full window releases one segment per segment taken, so the work per block stays
         // bounded (no burst of half a window in one interpolation tick).
@@ -187,7 +210,7 @@ impl Planner {
         let v_feed = if e.block.constant_speed {
             v_in
         } else {
-            e.block.v_feed.max(v_in).max(v_out)
+            e.v_feed.max(v_in).max(v_out)
         };
         let req = BlockRequest {
             length,

@@ -100,7 +100,9 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
             ("providesDirectionalDerivative", "false".into()),
         ],
     );
-    start(&mut w, "UnitDefinitions", &[]);
+    if !info.units.is_empty() {
+        start(&mut w, "UnitDefinitions", &[]);
+    }
     for u in &info.units {
         start(&mut w, "Unit", &[("name", u.name.clone())]);
         let names = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"];
@@ -120,7 +122,9 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
         }
         end(&mut w, "Unit");
     }
-    end(&mut w, "UnitDefinitions");
+    if !info.units.is_empty() {
+        end(&mut w, "UnitDefinitions");
+    }
     if !info.enumerations.is_empty() {
         start(&mut w, "TypeDefinitions", &[]);
         for e in &info.enumerations {
