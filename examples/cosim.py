@@ -34,12 +34,14 @@ def coupling():
 
 
 def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H, stop_time=None,
-                 after=0.3, t_max=120.0, record=None, inputs=None):
+                 after=0.3, t_max=120.0, record=None, inputs=None, grid="exact"):
     """Own master. Runs until stop_time, or (stop_time None) until program.finished + `after` s.
 
-    `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step."""
+    `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step.
+    `grid`: "exact" communication points k·h, or "ns" as libcosim computes them (see fmusim.Slave)."""
     cnc = Slave(cnc_u, "cnc")
     st = Slave(structure_u, "structure")
+    cnc.grid = st.grid = grid
     slaves = {"cnc": cnc, "structure": st}
     try:
         cnc.initialize(cnc_params)
