@@ -22,7 +22,7 @@ build:
 	$(CARGO) build --release --workspace --bins --lib
 
 # Both FMUs and the SSP that couples them (examples/cosim.ssp, generated, not committed).
-STRUCTURE_PACKAGE ?= $(BIN)/machine-structure package --output target/fmu/MachineStructure.fmu
+STRUCTURE_PACKAGE ?= $(BIN)/package-machine-structure target/fmu/MachineStructure.fmu
 
 fmu: build venv
 	$(BIN)/cnc-motion package --output target/fmu/CncMotion.fmu

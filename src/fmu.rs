@@ -65,31 +65,6 @@ fn units() -> Vec<UnitDefinition> {
     ]
 }
 
-/// A GUID that changes whenever the variable table changes: FNV-1a (128 bit) of its rows.
-fn guid(vars: &[VariableInfo]) -> String {
-    let mut h: u128 = 0x6c62272e07bb014262b821756295c58d;
-    let prime: u128 = 0x0000000001000000000000000000013B;
-    for v in vars {
-        let row = format!(
-            "{}|{}|{:?}|{:?}|{:?}|{:?};",
-            v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit
-        );
-        for b in row.bytes() {
-            h ^= b as u128;
-            h = h.wrapping_mul(prime);
-        }
-    }
-    let x = format!("{h:032x}");
-    format!(
-        "{{{}-{}-{}-{}-{}}}",
-        &x[0..8],
-        &x[8..12],
-        &x[12..16],
-        &x[16..20],
-        &x[20..32]
-    )
-}
-
 /// Time the default program takes on the default machine, rounded up to a whole second plus one.
 fn default_stop_time() -> f64 {
     let mut e = match Engine::new(Arc::from(DEFAULT_PROGRAM), "default.ngc", &Machine::default()) {
@@ -140,7 +115,7 @@ impl fmi2::Model for CncMotionFmu {
             ModelInfo {
                 model_name: model::MODEL_NAME.into(),
                 model_identifier: model::MODEL_NAME.into(),
-                guid: guid(&variables),
+                guid: fmi2::guid_of(&variables),
                 description: "CNC motion controller: G-code to jerk-limited axis motion through servo drives"
                     .into(),
                 version: env!("CARGO_PKG_VERSION").into(),
@@ -265,13 +240,7 @@ struct SavedModel {
 
 /// modelDescription.xml of CncMotion, start values read from a default model.
 pub fn model_description() -> String {
-    use fmi2::Model;
-    let info = CncMotionFmu::info();
-    let m = CncMotionFmu::new(None);
-    let starts: Vec<Option<Value>> = (0..info.variables.len())
-        .map(|i| info.variables[i].has_start().then(|| m.get(i)))
-        .collect();
-    fmi2::xml::model_description(info, &starts)
+    fmi2::model_description::<CncMotionFmu>()
 }
 
 fmi2::export_fmi2!(crate::fmu::CncMotionFmu);

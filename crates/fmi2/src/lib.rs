@@ -146,3 +146,38 @@ pub fn set_by_name<M: Model>(model: &mut M, name: &str, value: Value) -> Result<
         .ok_or_else(|| format!("no variable '{name}'"))?;
     model.set(i, value)
 }
+
+/// A GUID that changes whenever the variable table changes: FNV-1a (128 bit) of its rows.
+pub fn guid_of(variables: &[VariableInfo]) -> String {
+    let mut h: u128 = 0x6c62272e07bb014262b821756295c58d;
+    let prime: u128 = 0x0000000001000000000000000000013B;
+    for v in variables {
+        let row = format!(
+            "{}|{}|{:?}|{:?}|{:?}|{:?};",
+            v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit
+        );
+        for b in row.bytes() {
+            h ^= b as u128;
+            h = h.wrapping_mul(prime);
+        }
+    }
+    let x = format!("{h:032x}");
+    format!(
+        "{{{}-{}-{}-{}-{}}}",
+        &x[0..8],
+        &x[8..12],
+        &x[12..16],
+        &x[16..20],
+        &x[20..32]
+    )
+}
+
+/// modelDescription.xml of a model, start values read from a model at its defaults.
+pub fn model_description<M: Model>() -> String {
+    let info = M::info();
+    let m = M::new(None);
+    let starts: Vec<Option<Value>> = (0..info.variables.len())
+        .map(|i| info.variables[i].has_start().then(|| m.get(i)))
+        .collect();
+    xml::model_description(info, &starts)
+}
