@@ -34,11 +34,12 @@ def coupling():
 
 
 def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H, stop_time=None,
-                 after=0.3, t_max=120.0, record=None, inputs=None, grid="exact"):
+                 after=0.3, t_max=120.0, record=None, inputs=None, grid="exact", two_way=True):
     """Own master. Runs until stop_time, or (stop_time None) until program.finished + `after` s.
 
     `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step.
-    `grid`: "exact" communication points k·h, or "ns" as libcosim computes them (see fmusim.Slave)."""
+    `grid`: "exact" communication points k·h, or "ns" as libcosim computes them (see fmusim.Slave).
+    `two_way=False` leaves loadForce out (the frame does not push back on the axes)."""
     cnc = Slave(cnc_u, "cnc")
     st = Slave(structure_u, "structure")
     cnc.grid = st.grid = grid
@@ -68,7 +69,8 @@ def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H
                 break
             # Jacobi: inputs from the previous communication point, then every FMU steps.
             for fc, fv, tc, tv in conns:
-                slaves[tc].set(tv, value[(fc, fv)])
+                if two_way or tc != "cnc":
+                    slaves[tc].set(tv, value[(fc, fv)])
             if inputs is not None:
                 inputs(t, cnc)
             for s in slaves.values():
@@ -200,6 +202,7 @@ def main():
     ap.add_argument("--stop-time", type=float)
     ap.add_argument("--program", help="G-code file (own master only; the SSP runs the FMU's default)")
     ap.add_argument("--profile", default=None, help="machine.profile (own master only)")
+    ap.add_argument("--one-way", action="store_true", help="no loadForce back to the axes (own master only)")
     ap.add_argument("--out", default="out")
     a = ap.parse_args()
     if a.master == "slaves":
@@ -209,7 +212,7 @@ def main():
             params["program"] = pathlib.Path(a.program).read_text()
         if a.profile:
             params["machine.profile"] = a.profile
-        res = cosim_slaves(cnc, st, params, stop_time=a.stop_time)
+        res = cosim_slaves(cnc, st, params, stop_time=a.stop_time, two_way=not a.one_way)
         cnc.cleanup()
         st.cleanup()
     elif a.master == "fmpy-ssp":
