@@ -58,3 +58,32 @@ def structure(fmus):
 @pytest.fixture(scope="session")
 def ssp(fmus):
     return fmusim.SSP
+
+
+# --- Known FMU defects found by this suite --------------------------------------------------------
+# Each entry marks the matching tests xfail(strict=True): they still run, are reported as xfailed,
+# and turn into a FAILURE as soon as the defect is fixed (then delete the entry). Keep it short.
+KNOWN_FMU_ISSUES = {
+    "test_acceleration_continuous_jerk_bounded[seed003_pocket_compensated-":
+        "line↔arc tangent joints: the centripetal acceleration v²/R steps (0.125 m/s² in one tick on "
+        "y at R = 20 mm, 50 mm/s; J·T = 0.05) — no speed limit at curvature discontinuities",
+    "test_feed_override_halves_cruise_feed":
+        "override set before the start ramps in from 100 % (feed overshoots to 29.1 mm/s for 50 %) and "
+        "the override change ends with a jerk of 112.5 m/s³ > 50 m/s³",
+    "test_feed_hold_stops_smoothly_stays_and_resumes":
+        "feed hold ends its stop with an acceleration step (−0.1125 → 0 m/s² in one tick, jerk 112.5 m/s³)",
+    "test_outputs_insensitive_to_ulp_step_jitter":
+        "x/z.followingError change by up to 60 µm when h = 1 ms ± 1 ulp (libcosim's time grid); "
+        "positions agree to 1e-15 m",
+    "test_two_way_coupling_stable_at_1ms":
+        "loadForce = −couplingMass·a_frame has direct feedthrough from driveForce (−0.325·F with the "
+        "defaults); with the stiff drive the 1 ms loop diverges (Jacobi and Gauss-Seidel; stable for "
+        "couplingMass ≤ ~1 kg)",
+}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        for key, reason in KNOWN_FMU_ISSUES.items():
+            if key in item.nodeid:
+                item.add_marker(pytest.mark.xfail(strict=True, reason="known FMU defect: " + reason))
