@@ -31,7 +31,7 @@ fmu: build venv
 
 demo: fmu
 	$(PY) examples/demo.py
-	$(PY) examples/cosim.py --out out
+	$(PY) examples/cosim.py --one-way --out out
 
 cosim: fmu
 	$(PY) examples/cosim.py --master slaves

@@ -68,9 +68,13 @@ def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H
             if stop_time is None and (t >= t_max or (t_end is not None and t >= t_end + after - 1e-9)):
                 break
             # Jacobi: inputs from the previous communication point, then every FMU steps.
-            for fc, fv, tc, tv in conns:
-                if two_way or tc != "cnc":
-                    slaves[tc].set(tv, value[(fc, fv)])
+            try:
+                for fc, fv, tc, tv in conns:
+                    if two_way or tc != "cnc":
+                        slaves[tc].set(tv, value[(fc, fv)])
+            except Exception as e:  # an FMU refusing a non-finite coupling value
+                raise RuntimeError(f"co-simulation diverged at t = {t:.3f} s "
+                                   f"({ {k: v for k, v in value.items()} }): {e}") from e
             if inputs is not None:
                 inputs(t, cnc)
             for s in slaves.values():
@@ -212,15 +216,20 @@ def main():
             params["program"] = pathlib.Path(a.program).read_text()
         if a.profile:
             params["machine.profile"] = a.profile
-        res = cosim_slaves(cnc, st, params, stop_time=a.stop_time, two_way=not a.one_way)
-        cnc.cleanup()
-        st.cleanup()
+        try:
+            res = cosim_slaves(cnc, st, params, stop_time=a.stop_time, two_way=not a.one_way)
+        except RuntimeError as e:
+            sys.exit(f"{e}\n(two-way coupling unstable at this step; --one-way drives the frame only)")
+        finally:
+            cnc.cleanup()
+            st.cleanup()
     elif a.master == "fmpy-ssp":
         res = cosim_fmpy_ssp(stop_time=a.stop_time or 2.0)
     else:
         res = cosim_libcosim(stop_time=a.stop_time or 2.0)
     t = res["time"]
-    print(f"master {a.master}: {len(t)} steps of {H * 1e3:g} ms to t = {t[-1]:.3f} s")
+    coupling = "one-way" if a.master == "slaves" and a.one_way else "two-way"
+    print(f"master {a.master} ({coupling}): {len(t)} steps of {H * 1e3:g} ms to t = {t[-1]:.3f} s")
     for a_ in AXES:
         d = res[f"structure.{a_}.deflection"]
         f = res[f"cnc.{a_}.driveForce"]
