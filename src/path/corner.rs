@@ -32,21 +32,19 @@ pub fn corner_feed(d_in: Vec3, d_out: Vec3, machine: &Machine) -> f64 {
 }
 
 /// Seed 004 eq. 10 (Pateloup): at a tangent junction whose curvature jumps by Δκ, the centripetal
-/// acceleration jumps by v²·Δκ within one period δt, so v ≤ sqrt(1/(|Δκ|·δt·j)) per the paper
-/// (R1R2/|R1 − R2| = 1/|1/R1 − 1/R2|; a line is R = ∞). `j` is the smallest jerk limit of the axes in
-/// the curvature change; `dk` is the vector jump of d2 (so S-bends count both curvatures).
+/// acceleration jumps by v²·Δκ within one period δt, which the axis jerk must allow:
+/// v²·|Δκ| ≤ δt·j. (The printed eq. 10, V = sqrt(R1R2/(|R1 − R2| δt j)), is not a speed
+/// dimensionally; this is its intended form, V = sqrt(R1R2·δt·j/|R1 − R2|).) We apply it per axis to
+/// the vector jump `dk` of d2 (so S-bends count both curvatures), with half of each axis' δt·j, the
+/// other half left for the change of the tangential acceleration in the same period.
 pub fn curvature_change_speed(dk: Vec3, machine: &Machine) -> f64 {
-    let jump = norm(dk);
-    if jump <= 1e-12 {
-        return f64::INFINITY;
-    }
-    let mut j = f64::INFINITY;
+    let mut v2 = f64::INFINITY;
     for (i, ax) in machine.axes.iter().enumerate() {
-        if dk[i].abs() > 1e-12 * jump {
-            j = j.min(ax.max_jerk);
+        if dk[i].abs() > 1e-12 {
+            v2 = v2.min(0.5 * ax.max_jerk * machine.interpolation_period / dk[i].abs());
         }
     }
-    (1.0 / (jump * machine.interpolation_period * j)).sqrt()
+    v2.sqrt()
 }
 
 /// Seed 004 eq. 8: the arc tangent to both lines whose middle passes `tolerance` (TIT) from the
@@ -149,12 +147,12 @@ mod tests {
 
     #[test]
     fn eq10_line_to_arc() {
-        // Line into a tangent R = 10 mm arc: v = sqrt(R/(δt·j)) = sqrt(0.01/(0.001·50)).
+        // Line into a tangent R = 10 mm arc: v = sqrt(½·δt·j·R) = sqrt(0.5·0.001·50·0.01).
         let m = Machine::default();
         let v = curvature_change_speed([0.0, 100.0, 0.0], &m);
-        assert!((v - (0.01f64 / (0.001 * 50.0)).sqrt()).abs() < 1e-12);
+        assert!((v - (0.5 * 0.001 * 50.0 * 0.01f64).sqrt()).abs() < 1e-12);
         // R1 = 10, R2 = 20 mm, same side: R1R2/|R1 − R2| = 20 mm.
         let v = curvature_change_speed([0.0, 100.0 - 50.0, 0.0], &m);
-        assert!((v - (0.02f64 / (0.001 * 50.0)).sqrt()).abs() < 1e-12);
+        assert!((v - (0.5 * 0.001 * 50.0 * 0.02f64).sqrt()).abs() < 1e-12);
     }
 }

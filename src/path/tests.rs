@@ -324,7 +324,8 @@ fn arc_junctions() {
     let lines: Vec<u32> = out.iter().map(|b| b.line).collect();
     assert_eq!(lines, [1, 2, 3, 5, 6, 8]);
     // Line → tangent arc: eq. 10, v = sqrt(R/(δt·J)) = 1 m/s here, so the feed limits.
-    let eq10 = (r / (m.interpolation_period * 50.0)).sqrt();
+    // v²/R ≤ ½·δt·j (eq. 10 in its dimensionally consistent form, half the per-period budget).
+    let eq10 = (0.5 * m.interpolation_period * 50.0 * r).sqrt();
     assert!((out[0].v_end_max - eq10.min(out[0].v_feed).min(out[1].v_feed)).abs() < 1e-12);
     assert!(out[0].v_end_max > 0.0);
     // Arc end tangent is +Y, next line +X: 90° → seed-003 corner feed A·T.
@@ -356,7 +357,7 @@ fn tangent_arcs_curvature_change() {
         &mut out,
     );
     b.finish(&mut out);
-    let eq10 = (2.0 * r / (m.interpolation_period * 50.0)).sqrt();
+    let eq10 = (0.5 * m.interpolation_period * 50.0 * 2.0 * r).sqrt();
     let expect = eq10.min(out[0].v_feed).min(out[1].v_feed);
     assert!((out[0].v_end_max - expect).abs() < 1e-12);
     assert_eq!(out[1].segment.end(), [-r, 2.0 * r, 0.0]);
