@@ -64,9 +64,6 @@ def ssp(fmus):
 # Each entry marks the matching tests xfail(strict=True): they still run, are reported as xfailed,
 # and turn into a FAILURE as soon as the defect is fixed (then delete the entry). Keep it short.
 KNOWN_FMU_ISSUES = {
-    "test_acceleration_continuous_jerk_bounded[seed003_pocket_compensated-":
-        "line↔arc tangent joints: the centripetal acceleration v²/R steps (0.125 m/s² in one tick on "
-        "y at R = 20 mm, 50 mm/s; J·T = 0.05) — no speed limit at curvature discontinuities",
     "test_feed_override_halves_cruise_feed":
         "override set before the start ramps in from 100 % (feed overshoots to 29.1 mm/s for 50 %) and "
         "the override change ends with a jerk of 112.5 m/s³ > 50 m/s³",
