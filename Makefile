@@ -34,7 +34,7 @@ demo: fmu
 	$(PY) examples/cosim.py --one-way --out out
 
 cosim: fmu
-	$(PY) examples/cosim.py --master slaves
+	$(PY) examples/cosim.py --master slaves --one-way
 	$(PY) examples/cosim.py --master fmpy-ssp
 	$(PY) examples/cosim.py --master libcosim
 

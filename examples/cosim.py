@@ -235,6 +235,10 @@ def main():
         f = res[f"cnc.{a_}.driveForce"]
         print(f"  {a_}: max |drive force| {np.max(np.abs(f)):10.3f} N   max |deflection| "
               f"{np.max(np.abs(d)) * 1e6:9.3f} µm")
+    peak = max(float(np.max(np.abs(res[f"cnc.{a_}.driveForce"]))) for a_ in AXES)
+    if not np.isfinite(peak) or peak > 1e6:
+        print(f"  WARNING: drive forces reach {peak:.3g} N: the two-way loop diverges at this step "
+              "(see README, co-simulation)")
     rms, stops = residual_vibration(res)
     print(f"  residual vibration after {stops} stops: RMS {rms * 1e6:.4f} µm")
     out = pathlib.Path(a.out)
