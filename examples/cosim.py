@@ -115,10 +115,17 @@ def _flat_index(readers, record, i):
     raise KeyError(record[i])
 
 
-def cosim_fmpy_ssp(ssp=SSP, stop_time=2.0, h=H):
-    """fmpy.ssp.simulate_ssp. Its rows are stamped with the START of each step; we restamp with the end."""
+def cosim_fmpy_ssp(ssp=SSP, stop_time=2.0, h=H, parameters=None):
+    """fmpy.ssp.simulate_ssp. Its rows are stamped with the START of each step; we restamp with the end.
+    fmpy.ssp ignores the SSD's parameter bindings: give them again as `parameters`
+    {"structure.x.couplingMass": 1.0, ...}."""
+    from types import SimpleNamespace
+
     from fmpy.ssp.simulation import simulate_ssp
-    r = simulate_ssp(str(ssp), stop_time=stop_time, step_size=h)
+    pset = None
+    if parameters:
+        pset = SimpleNamespace(parameters=[SimpleNamespace(name=k, value=v) for k, v in parameters.items()])
+    r = simulate_ssp(str(ssp), stop_time=stop_time, step_size=h, parameter_set=pset)
     res = {"time": (np.arange(len(r)) + 1) * h}
     for name in r.dtype.names[1:]:
         res[name] = np.asarray(r[name], dtype=float)

@@ -49,6 +49,29 @@ def test_coupling_is_live(own):
     assert f > 0 and d > 0 and load > 0, (f, d, load)
 
 
+STABLE = {f"{a}.couplingMass": 1.0 for a in "xyz"}  # a two-way loop that is stable at 1 ms
+
+
+@pytest.fixture(scope="module")
+def stable_ssp(fmus, tmp_path_factory):
+    from make_ssp import make_ssp
+    return make_ssp(out=tmp_path_factory.mktemp("ssp") / "stable.ssp", structure_params=STABLE)
+
+
+@pytest.mark.parametrize("grid", ["exact", "ns"])
+def test_masters_agree_on_a_stable_two_way_loop(cnc, structure, stable_ssp, grid):
+    """Parameters bound in the SSP (libcosim) = parameter_set (fmpy.ssp) = set by the own master."""
+    own_ = cosim.cosim_slaves(cnc, structure, structure_params=STABLE, stop_time=T, grid=grid)
+    assert max(np.max(np.abs(own_[f"structure.{a}.loadForce"])) for a in "xyz") > 0
+    assert max(np.max(np.abs(own_[f"cnc.{a}.driveForce"])) for a in "xyz") < 1e3
+    if grid == "exact":
+        _compare(own_, cosim.cosim_fmpy_ssp(stable_ssp, stop_time=T,
+                                            parameters={f"structure.{k}": v for k, v in STABLE.items()}),
+                 "fmpy.ssp (stable)")
+    else:
+        _compare(own_, cosim.cosim_libcosim(stable_ssp, stop_time=T), "libcosim (stable)")
+
+
 def test_fmpy_ssp_equals_own_master(own, ssp):
     _compare(own, cosim.cosim_fmpy_ssp(ssp, stop_time=T), "fmpy.ssp")
 
