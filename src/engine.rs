@@ -283,7 +283,10 @@ impl Engine {
             return;
         };
         let dt = t - self.servo_time;
-        if dt <= 0.0 {
+        // A remainder of rounding size (a communication point a hair past a tick) is not a step:
+        // it would start a servo period on the new command and make the result depend on how the
+        // importer sums its time.
+        if dt <= 1e-9 * self.machine.interpolation_period {
             return;
         }
         for (i, d) in drives.iter_mut().enumerate() {

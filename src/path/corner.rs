@@ -2,7 +2,9 @@
 //! eq. 10 curvature-change speed at tangent junctions, and the quintic transition (blend.rs).
 
 use super::arc::{chord_error_speed, constant_speed_limit, Arc};
-use super::{add, cross, dot, norm, scale, sub, unit};
+#[cfg(test)]
+use super::norm;
+use super::{add, cross, dot, scale, sub, unit};
 use crate::config::Machine;
 use crate::Vec3;
 

@@ -163,7 +163,8 @@ pub struct ServoAxis {
     friction: f64,
     /// Time already spent in the current control period (s).
     phase: f64,
-    following_error: f64,
+    /// Command position in force (m): the following error is read against it at any instant.
+    command_position: f64,
     #[serde(skip)]
     full: Option<Step>,
     #[serde(skip)]
@@ -181,7 +182,7 @@ impl ServoAxis {
             torque_ref: 0.0,
             friction: 0.0,
             phase: 0.0,
-            following_error: 0.0,
+            command_position: position,
             full: None,
             partial: None,
         }
@@ -206,7 +207,7 @@ impl ServoAxis {
         AxisState {
             position: self.x[2],
             velocity: self.x[3],
-            following_error: self.following_error,
+            following_error: self.command_position - self.feedback(),
             motor_torque: self.x[4],
             // The nut pushes the table; the screw bearings push the frame the other way.
             drive_force: -self.screw_force(),
@@ -232,7 +233,6 @@ impl ServoAxis {
         let p = &self.params;
         let r = self.lead_radius();
         let e = cmd.position - self.feedback();
-        self.following_error = e;
         let omega_ref = (p.kv * e + p.velocity_feedforward * cmd.velocity) / r;
         let e_omega = omega_ref - self.x[1];
         let j_total = p.rotor_inertia + p.screw_inertia + p.table_mass * r * r;
@@ -252,6 +252,7 @@ impl ServoAxis {
     /// Advance by dt (s) with the command held and an external force on the table (N).
     pub fn step(&mut self, cmd: &AxisCommand, load_force: f64, dt: f64) {
         let period = 1.0 / self.params.servo_rate;
+        self.command_position = cmd.position;
         let mut left = dt;
         while left > 0.0 {
             if self.phase == 0.0 {
