@@ -31,10 +31,10 @@ fmu: build venv
 
 demo: fmu
 	$(PY) examples/demo.py
-	$(PY) examples/cosim.py --one-way --out out
+	$(PY) examples/cosim.py --out out
 
 cosim: fmu
-	$(PY) examples/cosim.py --master slaves --one-way
+	$(PY) examples/cosim.py --master slaves
 	$(PY) examples/cosim.py --master fmpy-ssp
 	$(PY) examples/cosim.py --master libcosim
 
