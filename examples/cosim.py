@@ -231,9 +231,9 @@ def main():
             cnc.cleanup()
             st.cleanup()
     elif a.master == "fmpy-ssp":
-        res = cosim_fmpy_ssp(stop_time=a.stop_time or 2.0)
+        res = cosim_fmpy_ssp(stop_time=a.stop_time or 6.5)
     else:
-        res = cosim_libcosim(stop_time=a.stop_time or 2.0)
+        res = cosim_libcosim(stop_time=a.stop_time or 6.5)
     t = res["time"]
     coupling = "one-way" if a.master == "slaves" and a.one_way else "two-way"
     print(f"master {a.master} ({coupling}): {len(t)} steps of {H * 1e3:g} ms to t = {t[-1]:.3f} s")
