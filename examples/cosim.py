@@ -34,12 +34,15 @@ def coupling():
 
 
 def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H, stop_time=None,
-                 after=0.3, t_max=120.0, record=None, inputs=None):
+                 after=0.3, t_max=120.0, record=None, inputs=None, grid="exact", two_way=True):
     """Own master. Runs until stop_time, or (stop_time None) until program.finished + `after` s.
 
-    `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step."""
+    `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step.
+    `grid`: "exact" communication points k·h, or "ns" as libcosim computes them (see fmusim.Slave).
+    `two_way=False` leaves loadForce out (the frame does not push back on the axes)."""
     cnc = Slave(cnc_u, "cnc")
     st = Slave(structure_u, "structure")
+    cnc.grid = st.grid = grid
     slaves = {"cnc": cnc, "structure": st}
     try:
         cnc.initialize(cnc_params)
@@ -65,8 +68,13 @@ def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H
             if stop_time is None and (t >= t_max or (t_end is not None and t >= t_end + after - 1e-9)):
                 break
             # Jacobi: inputs from the previous communication point, then every FMU steps.
-            for fc, fv, tc, tv in conns:
-                slaves[tc].set(tv, value[(fc, fv)])
+            try:
+                for fc, fv, tc, tv in conns:
+                    if two_way or tc != "cnc":
+                        slaves[tc].set(tv, value[(fc, fv)])
+            except Exception as e:  # an FMU refusing a non-finite coupling value
+                raise RuntimeError(f"co-simulation diverged at t = {t:.3f} s "
+                                   f"({ {k: v for k, v in value.items()} }): {e}") from e
             if inputs is not None:
                 inputs(t, cnc)
             for s in slaves.values():
@@ -107,10 +115,17 @@ def _flat_index(readers, record, i):
     raise KeyError(record[i])
 
 
-def cosim_fmpy_ssp(ssp=SSP, stop_time=2.0, h=H):
-    """fmpy.ssp.simulate_ssp. Its rows are stamped with the START of each step; we restamp with the end."""
+def cosim_fmpy_ssp(ssp=SSP, stop_time=2.0, h=H, parameters=None):
+    """fmpy.ssp.simulate_ssp. Its rows are stamped with the START of each step; we restamp with the end.
+    fmpy.ssp ignores the SSD's parameter bindings: give them again as `parameters`
+    {"structure.x.couplingMass": 1.0, ...}."""
+    from types import SimpleNamespace
+
     from fmpy.ssp.simulation import simulate_ssp
-    r = simulate_ssp(str(ssp), stop_time=stop_time, step_size=h)
+    pset = None
+    if parameters:
+        pset = SimpleNamespace(parameters=[SimpleNamespace(name=k, value=v) for k, v in parameters.items()])
+    r = simulate_ssp(str(ssp), stop_time=stop_time, step_size=h, parameter_set=pset)
     res = {"time": (np.arange(len(r)) + 1) * h}
     for name in r.dtype.names[1:]:
         res[name] = np.asarray(r[name], dtype=float)
@@ -198,6 +213,7 @@ def main():
     ap.add_argument("--stop-time", type=float)
     ap.add_argument("--program", help="G-code file (own master only; the SSP runs the FMU's default)")
     ap.add_argument("--profile", default=None, help="machine.profile (own master only)")
+    ap.add_argument("--one-way", action="store_true", help="no loadForce back to the axes (own master only)")
     ap.add_argument("--out", default="out")
     a = ap.parse_args()
     if a.master == "slaves":
@@ -207,20 +223,29 @@ def main():
             params["program"] = pathlib.Path(a.program).read_text()
         if a.profile:
             params["machine.profile"] = a.profile
-        res = cosim_slaves(cnc, st, params, stop_time=a.stop_time)
-        cnc.cleanup()
-        st.cleanup()
+        try:
+            res = cosim_slaves(cnc, st, params, stop_time=a.stop_time, two_way=not a.one_way)
+        except RuntimeError as e:
+            sys.exit(f"{e}\n(two-way coupling unstable at this step; --one-way drives the frame only)")
+        finally:
+            cnc.cleanup()
+            st.cleanup()
     elif a.master == "fmpy-ssp":
-        res = cosim_fmpy_ssp(stop_time=a.stop_time or 2.0)
+        res = cosim_fmpy_ssp(stop_time=a.stop_time or 6.5)
     else:
-        res = cosim_libcosim(stop_time=a.stop_time or 2.0)
+        res = cosim_libcosim(stop_time=a.stop_time or 6.5)
     t = res["time"]
-    print(f"master {a.master}: {len(t)} steps of {H * 1e3:g} ms to t = {t[-1]:.3f} s")
+    coupling = "one-way" if a.master == "slaves" and a.one_way else "two-way"
+    print(f"master {a.master} ({coupling}): {len(t)} steps of {H * 1e3:g} ms to t = {t[-1]:.3f} s")
     for a_ in AXES:
         d = res[f"structure.{a_}.deflection"]
         f = res[f"cnc.{a_}.driveForce"]
         print(f"  {a_}: max |drive force| {np.max(np.abs(f)):10.3f} N   max |deflection| "
               f"{np.max(np.abs(d)) * 1e6:9.3f} µm")
+    peak = max(float(np.max(np.abs(res[f"cnc.{a_}.driveForce"]))) for a_ in AXES)
+    if not np.isfinite(peak) or peak > 1e6:
+        print(f"  WARNING: drive forces reach {peak:.3g} N: the two-way loop diverges at this step "
+              "(see README, co-simulation)")
     rms, stops = residual_vibration(res)
     print(f"  residual vibration after {stops} stops: RMS {rms * 1e6:.4f} µm")
     out = pathlib.Path(a.out)

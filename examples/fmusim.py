@@ -151,8 +151,18 @@ class Slave:
         self.steps = 0
         self.t0 = start_time
 
+    # Time grid of the communication points: "exact" = t0 + k·h (no drift from summing h), or
+    # "ns" = libcosim's integer nanoseconds, t_k = k·h_ns/1e9 and h = t_(k+1) − t_k (varies by ulps).
+    grid = "exact"
+
     def step(self, h):
-        # Communication points as t0 + k·h (no drift from summing h).
+        if self.grid == "ns":
+            h_ns = int(round(h * 1e9))
+            t0, t1 = (self.steps * h_ns) / 1e9, ((self.steps + 1) * h_ns) / 1e9
+            self.fmu.doStep(currentCommunicationPoint=t0, communicationStepSize=t1 - t0)
+            self.steps += 1
+            self.time = t1
+            return
         self.fmu.doStep(currentCommunicationPoint=self.time, communicationStepSize=h)
         self.steps += 1
         self.time = self.t0 + self.steps * h

@@ -27,7 +27,8 @@ CNC_RECORDED = [f"{a}.command.{q}" for a in AXES for q in ("position", "velocity
 STRUCTURE_RECORDED = [f"{a}.{q}" for a in AXES for q in ("deflection", "acceleration")]
 
 SSD_NS = ('xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
-          'xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon"')
+          'xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" '
+          'xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues"')
 
 
 def connections():
@@ -45,7 +46,28 @@ def _connector(var):
     return f'        <ssd:Connector name={quoteattr(var.name)} kind="{kind}"><ssc:{ty}/></ssd:Connector>'
 
 
-def component_xml(name, fmu_path, wanted):
+def bindings_xml(params):
+    """Inline parameter values of a component (Real parameters only). libcosim applies them; fmpy.ssp
+    does not (pass the same values to simulate_ssp as parameter_set, see cosim.cosim_fmpy_ssp)."""
+    if not params:
+        return ""
+    rows = "\n".join(f'              <ssv:Parameter name={quoteattr(k)}><ssv:Real value="{float(v)!r}"/></ssv:Parameter>'
+                     for k, v in params.items())
+    return f"""      <ssd:ParameterBindings>
+        <ssd:ParameterBinding>
+          <ssd:ParameterValues>
+            <ssv:ParameterSet version="1.0" name="values">
+              <ssv:Parameters>
+{rows}
+              </ssv:Parameters>
+            </ssv:ParameterSet>
+          </ssd:ParameterValues>
+        </ssd:ParameterBinding>
+      </ssd:ParameterBindings>
+"""
+
+
+def component_xml(name, fmu_path, wanted, params=None):
     md = read_model_description(str(fmu_path))
     by_name = {v.name: v for v in md.modelVariables}
     missing = [w for w in wanted if w not in by_name]
@@ -54,11 +76,14 @@ def component_xml(name, fmu_path, wanted):
     lines = [f'    <ssd:Component name="{name}" type="application/x-fmu-sharedlibrary" '
              f'source="resources/{fmu_path.name}">', "      <ssd:Connectors>"]
     lines += [_connector(by_name[w]) for w in wanted]
-    lines += ["      </ssd:Connectors>", "    </ssd:Component>"]
+    lines += ["      </ssd:Connectors>"]
+    if params:
+        lines.append(bindings_xml(params).rstrip("\n"))
+    lines += ["    </ssd:Component>"]
     return "\n".join(lines)
 
 
-def ssd_text(cnc_fmu, structure_fmu, stop_time):
+def ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params=None):
     conns = connections()
     ports = {"cnc": [], "structure": []}
     for fc, fv, tc, tv in conns:
@@ -74,7 +99,7 @@ def ssd_text(cnc_fmu, structure_fmu, stop_time):
   <ssd:System name="CncOnFrame" description="CNC motion controller driving a modal machine frame">
   <ssd:Elements>
 {component_xml("cnc", cnc_fmu, cnc_ports)}
-{component_xml("structure", structure_fmu, st_ports)}
+{component_xml("structure", structure_fmu, st_ports, structure_params)}
   </ssd:Elements>
   <ssd:Connections>
 {conn_xml}
@@ -85,9 +110,10 @@ def ssd_text(cnc_fmu, structure_fmu, stop_time):
 """
 
 
-def make_ssp(cnc_fmu=CNC_FMU, structure_fmu=STRUCTURE_FMU, out=SSP, stop_time=8.0):
+def make_ssp(cnc_fmu=CNC_FMU, structure_fmu=STRUCTURE_FMU, out=SSP, stop_time=8.0, structure_params=None):
+    """`structure_params`: {variable: value} bound in the SSP (e.g. {"x.couplingMass": 1.0})."""
     cnc_fmu, structure_fmu, out = pathlib.Path(cnc_fmu), pathlib.Path(structure_fmu), pathlib.Path(out)
-    text = ssd_text(cnc_fmu, structure_fmu, stop_time)
+    text = ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_suffix(".tmp")
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:

@@ -26,9 +26,10 @@ FIELDS = ["program", "profile", "jerk_mm_s3", "cycle_time_s", "max_contour_error
 _unpacked = {}
 
 
-def simulate_case(case, cnc_fmu, structure_fmu):
+def simulate_case(case, cnc_fmu, structure_fmu, two_way=False):
     """One case (program path, profile, jerk limit in mm/s³) → dict of FIELDS. Runs in a Dask worker
-    (absolute FMU paths: a worker imports this module from its own scratch folder)."""
+    (absolute FMU paths: a worker imports this module from its own scratch folder). One-way coupling
+    by default: the frame is driven by the axes; `two_way` also feeds loadForce back (see README)."""
     sys.path.insert(0, str(HERE))
     from cosim import cosim_slaves, residual_vibration
 
@@ -42,7 +43,7 @@ def simulate_case(case, cnc_fmu, structure_fmu):
         params[f"{a}.maxJerk"] = jerk * 1e-3
     res = cosim_slaves(cnc, st, params, record=[
         *(f"cnc.{a}.command.velocity" for a in fmusim.AXES), "cnc.program.finished", "cnc.path.contourError",
-        *(f"structure.{a}.deflection" for a in fmusim.AXES)], after=0.2)
+        *(f"structure.{a}.deflection" for a in fmusim.AXES)], after=0.2, two_way=two_way)
     rms, stops = residual_vibration(res)
     defl = np.sqrt(sum(res[f"structure.{a}.deflection"] ** 2 for a in fmusim.AXES))
     return {"program": pathlib.Path(program).name, "profile": profile, "jerk_mm_s3": jerk,
@@ -56,11 +57,11 @@ def cases(programs, profiles, jerks):
     return [(str(p), k, float(j)) for p, k, j in itertools.product(programs, profiles, jerks)]
 
 
-def run_serial(case_list):
-    return [simulate_case(c, str(fmusim.CNC_FMU), str(fmusim.STRUCTURE_FMU)) for c in case_list]
+def run_serial(case_list, two_way=False):
+    return [simulate_case(c, str(fmusim.CNC_FMU), str(fmusim.STRUCTURE_FMU), two_way) for c in case_list]
 
 
-def run_dask(case_list, scheduler=None, n_workers=2):
+def run_dask(case_list, scheduler=None, n_workers=2, two_way=False):
     """Map the cases over a Dask cluster; a LocalCluster of `n_workers` single-threaded processes
     unless `scheduler` names a running one."""
     from dask.distributed import Client, LocalCluster
@@ -79,7 +80,7 @@ def run_dask(case_list, scheduler=None, n_workers=2):
             for name in ("fmusim.py", "make_ssp.py", "cosim.py", "sweep.py"):
                 client.upload_file(str(HERE / name))
         futures = client.map(simulate_case, case_list, cnc_fmu=str(fmusim.CNC_FMU),
-                             structure_fmu=str(fmusim.STRUCTURE_FMU), pure=False)
+                             structure_fmu=str(fmusim.STRUCTURE_FMU), two_way=two_way, pure=False)
         return client.gather(futures)
     finally:
         client.close()
@@ -94,10 +95,11 @@ def main():
     ap.add_argument("--jerk", type=float, nargs="+", default=[10000, 40000, 160000], help="mm/s³")
     ap.add_argument("--profile", nargs="+", default=["scurve7", "quintic", "jerk15", "trapezoid"])
     ap.add_argument("--program", nargs="+", default=[str(fmusim.DEFAULT_PROGRAM)])
+    ap.add_argument("--two-way", action="store_true", help="feed the frame's loadForce back to the axes")
     ap.add_argument("--out", default=str(fmusim.ROOT / "out"))
     a = ap.parse_args()
     cl = cases(a.program, a.profile, a.jerk)
-    rows = run_dask(cl, a.scheduler, a.workers)
+    rows = run_dask(cl, a.scheduler, a.workers, a.two_way)
     out = pathlib.Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "sweep.csv", "w", newline="") as f:
