@@ -144,8 +144,7 @@ proptest! {
 fn step_checked(e: &mut Engine, last_a: &mut [f64; 3]) {
     let t = *e.step().unwrap();
     let m = e.machine().clone();
-    for i in 0..3 {
-        let lim = &m.axes[i];
+    for (i, lim) in m.axes.iter().enumerate() {
         assert!(
             t.v[i].abs() <= lim.max_velocity * (1.0 + REL),
             "v {} at {}",

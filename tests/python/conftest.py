@@ -64,11 +64,6 @@ def ssp(fmus):
 # Each entry marks the matching tests xfail(strict=True): they still run, are reported as xfailed,
 # and turn into a FAILURE as soon as the defect is fixed (then delete the entry). Keep it short.
 KNOWN_FMU_ISSUES = {
-    "test_feed_override_halves_cruise_feed":
-        "override set before the start ramps in from 100 % (feed overshoots to 29.1 mm/s for 50 %) and "
-        "the override change ends with a jerk of 112.5 m/s³ > 50 m/s³",
-    "test_feed_hold_stops_smoothly_stays_and_resumes":
-        "feed hold ends its stop with an acceleration step (−0.1125 → 0 m/s² in one tick, jerk 112.5 m/s³)",
     "test_two_way_coupling_stable_at_1ms":
         "with the tables' 50 kg on the frame (couplingMass, opt-in; 0 by default) the 1 ms Jacobi loop "
         "diverges after ~0.7 s through the 150 Hz z mode (Gauss-Seidel stays bounded, 205 N)",
