@@ -36,6 +36,7 @@ fn main() {
             Segment::Arc(_) => "arc",
             Segment::Blend(_) => "blend",
             Segment::Dwell { .. } => "dwell",
+            Segment::Part { .. } => "part",
         };
         total += p.profile.duration();
         println!(
