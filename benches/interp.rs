@@ -31,6 +31,49 @@ fn bench(c: &mut Criterion) {
             *e.step().unwrap()
         })
     });
+    let servo = Engine::new(
+        Arc::from(cnc_motion::fmu::DEFAULT_PROGRAM),
+        "default.ngc",
+        &machine,
+    )
+    .unwrap()
+    .with_servo(true);
+    c.bench_function("interp/tick_with_servo_default_program", |b| {
+        let mut e = servo.clone();
+        b.iter(|| {
+            if e.finished() {
+                e = servo.clone();
+            }
+            *e.step().unwrap()
+        })
+    });
+    c.bench_function("interp/advance_1ms_with_servo_default_program", |b| {
+        let mut e = servo.clone();
+        b.iter(|| {
+            if e.finished() {
+                e = servo.clone();
+            }
+            e.advance(1e-3).unwrap();
+            e.tick().p[0]
+        })
+    });
+    {
+        use fmi2::Model;
+        let mut m = cnc_motion::fmu::CncMotionFmu::new(None);
+        m.0.program = cnc_motion::fmu::DEFAULT_PROGRAM.to_string();
+        m.exit_initialization().unwrap();
+        let fresh = m.clone();
+        let mut n = 0;
+        c.bench_function("interp/model_do_step_1ms", |b| {
+            b.iter(|| {
+                n += 1;
+                if n % 5000 == 0 {
+                    m = fresh.clone();
+                }
+                m.do_step(1e-3).unwrap();
+            })
+        });
+    }
     // Worst tick of whole runs, reported once (criterion measures means, not maxima).
     let mut worst = 0.0f64;
     let mut ticks = 0u64;

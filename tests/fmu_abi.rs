@@ -1,0 +1,316 @@
+//! The built CncMotion shared library driven through its C ABI, as an importer does it (libloading):
+//! a full run of the default program, and every kind of bad call answered with fmi2Error.
+
+use libloading::{Library, Symbol};
+use std::ffi::{c_char, c_int, c_uint, c_void, CStr, CString};
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+type Component = *mut c_void;
+const OK: c_int = 0;
+const ERROR: c_int = 3;
+
+#[repr(C)]
+struct Callbacks {
+    // Declared without the C varargs, as fmpy's ctypes logger is: the FMU passes the finished
+    // message and no arguments, which is ABI-compatible on the platforms we build for.
+    logger: Option<unsafe extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char)>,
+    allocate: *const c_void,
+    free: *const c_void,
+    step_finished: *const c_void,
+    env: *mut c_void,
+}
+
+/// The messages of one test's instances (the logger's environment pointer).
+type Log = Mutex<Vec<String>>;
+
+unsafe extern "C" fn logger(
+    env: *mut c_void,
+    _name: *const c_char,
+    _status: c_int,
+    _cat: *const c_char,
+    msg: *const c_char,
+) {
+    let text = CStr::from_ptr(msg).to_string_lossy().replace("%%", "%");
+    (*(env as *const Log)).lock().unwrap().push(text);
+}
+
+fn library_path() -> PathBuf {
+    // target/<profile>/deps/fmu_abi-… → target/<profile>/libcnc_motion.so
+    let exe = std::env::current_exe().unwrap();
+    exe.parent().unwrap().parent().unwrap().join("libcnc_motion.so")
+}
+
+struct Fmu {
+    lib: Library,
+    guid: CString,
+    callbacks: Box<Callbacks>,
+    log: Box<Log>,
+    vrs: std::collections::HashMap<String, c_uint>,
+}
+
+macro_rules! sym {
+    ($fmu:expr, $name:literal, $t:ty) => {{
+        let s: Symbol<$t> = unsafe { $fmu.lib.get($name.as_bytes()) }.expect($name);
+        s
+    }};
+}
+
+type FnInstantiate = unsafe extern "C" fn(
+    *const c_char,
+    c_int,
+    *const c_char,
+    *const c_char,
+    *const Callbacks,
+    c_int,
+    c_int,
+) -> Component;
+type FnC = unsafe extern "C" fn(Component) -> c_int;
+type FnSetup = unsafe extern "C" fn(Component, c_int, f64, f64, c_int, f64) -> c_int;
+type FnGetReal = unsafe extern "C" fn(Component, *const c_uint, usize, *mut f64) -> c_int;
+type FnSetReal = unsafe extern "C" fn(Component, *const c_uint, usize, *const f64) -> c_int;
+type FnGetBool = unsafe extern "C" fn(Component, *const c_uint, usize, *mut c_int) -> c_int;
+type FnSetString = unsafe extern "C" fn(Component, *const c_uint, usize, *const *const c_char) -> c_int;
+type FnDoStep = unsafe extern "C" fn(Component, f64, f64, c_int) -> c_int;
+type FnFree = unsafe extern "C" fn(Component);
+
+impl Fmu {
+    fn load() -> Fmu {
+        let lib = unsafe { Library::new(library_path()) }
+            .expect("libcnc_motion.so (built by cargo with the tests)");
+        let xml = cnc_motion::fmu::model_description();
+        let guid = xml
+            .split("guid=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap()
+            .to_string();
+        let log: Box<Log> = Box::new(Mutex::new(Vec::new()));
+        let callbacks = Box::new(Callbacks {
+            logger: Some(logger),
+            allocate: std::ptr::null(),
+            free: std::ptr::null(),
+            step_finished: std::ptr::null(),
+            env: &*log as *const Log as *mut c_void,
+        });
+        // Value references from the modelDescription, as an importer reads them.
+        let mut vrs = std::collections::HashMap::new();
+        for part in xml.split("<ScalarVariable name=\"").skip(1) {
+            let name = part.split('"').next().unwrap().to_string();
+            let vr = part
+                .split("valueReference=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            vrs.insert(name, vr);
+        }
+        Fmu {
+            lib,
+            guid: CString::new(guid).unwrap(),
+            callbacks,
+            log,
+            vrs,
+        }
+    }
+
+    fn vr(&self, name: &str) -> c_uint {
+        self.vrs[name]
+    }
+
+    fn last_log(&self) -> String {
+        self.log.lock().unwrap().last().cloned().unwrap_or_default()
+    }
+
+    fn instantiate(&self, name: &str) -> Component {
+        let f = sym!(self, "fmi2Instantiate", FnInstantiate);
+        let n = CString::new(name).unwrap();
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/resources");
+        let uri = CString::new(format!("file://{dir}")).unwrap();
+        unsafe {
+            f(
+                n.as_ptr(),
+                1,
+                self.guid.as_ptr(),
+                uri.as_ptr(),
+                &*self.callbacks,
+                0,
+                1,
+            )
+        }
+    }
+
+    fn call(&self, name: &str, c: Component) -> c_int {
+        let f: Symbol<FnC> = unsafe { self.lib.get(name.as_bytes()) }.unwrap();
+        unsafe { f(c) }
+    }
+
+    fn init(&self, c: Component, program: Option<&str>) -> c_int {
+        let setup = sym!(self, "fmi2SetupExperiment", FnSetup);
+        assert_eq!(unsafe { setup(c, 0, 0.0, 0.0, 0, 0.0) }, OK);
+        if let Some(p) = program {
+            let set = sym!(self, "fmi2SetString", FnSetString);
+            let text = CString::new(p).unwrap();
+            let vr = self.vr("program");
+            assert_eq!(unsafe { set(c, &vr, 1, &text.as_ptr()) }, OK);
+        }
+        assert_eq!(self.call("fmi2EnterInitializationMode", c), OK);
+        self.call("fmi2ExitInitializationMode", c)
+    }
+
+    fn real(&self, c: Component, name: &str) -> f64 {
+        let get = sym!(self, "fmi2GetReal", FnGetReal);
+        let vr = self.vr(name);
+        let mut v = f64::NAN;
+        assert_eq!(unsafe { get(c, &vr, 1, &mut v) }, OK);
+        v
+    }
+
+    fn free(&self, c: Component) {
+        let f = sym!(self, "fmi2FreeInstance", FnFree);
+        unsafe { f(c) };
+    }
+}
+
+#[test]
+fn full_run_of_the_default_program_equals_the_engine() {
+    let fmu = Fmu::load();
+    let c = fmu.instantiate("run");
+    assert!(!c.is_null());
+    assert_eq!(fmu.init(c, None), OK);
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
+    let finished_vr = fmu.vr("program.finished");
+    // The same program and machine through the library: outputs must be identical.
+    let text = include_str!("../resources/default.ngc");
+    let machine = cnc_motion::config::Machine::default();
+    let mut engine = cnc_motion::engine::Engine::new(text.into(), "default.ngc", &machine)
+        .unwrap()
+        .with_servo(true);
+    let mut t = 0.0;
+    let mut done: c_int = 0;
+    let mut n = 0;
+    while done == 0 {
+        assert_eq!(unsafe { step(c, t, 1e-3, 1) }, OK);
+        engine.advance(1e-3).unwrap();
+        t = (n + 1) as f64 * 1e-3;
+        n += 1;
+        assert_eq!(fmu.real(c, "x.command.position"), engine.tick().p[0]);
+        assert_eq!(fmu.real(c, "y.position"), engine.axes()[1].position);
+        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
+        assert!(n < 100_000);
+    }
+    let end = [
+        fmu.real(c, "x.command.position"),
+        fmu.real(c, "y.command.position"),
+        fmu.real(c, "z.command.position"),
+    ];
+    assert_eq!(end, [0.0, 0.0, 0.005], "the program's last point");
+    assert_eq!(fmu.call("fmi2Terminate", c), OK);
+    fmu.free(c);
+}
+
+#[test]
+fn bad_calls_return_errors_with_a_log_line() {
+    let fmu = Fmu::load();
+    let c = fmu.instantiate("bad");
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get = sym!(fmu, "fmi2GetReal", FnGetReal);
+    let set = sym!(fmu, "fmi2SetReal", FnSetReal);
+    // Wrong state: a step before initialization.
+    assert_eq!(unsafe { step(c, 0.0, 1e-3, 1) }, ERROR);
+    assert!(
+        fmu.last_log()
+            .contains("fmi2DoStep: not allowed in state Instantiated"),
+        "{}",
+        fmu.last_log()
+    );
+    assert_eq!(fmu.init(c, None), OK);
+    // Unknown value reference.
+    let bad_vr: c_uint = 999_999;
+    let mut v = 0.0;
+    assert_eq!(unsafe { get(c, &bad_vr, 1, &mut v) }, ERROR);
+    assert!(fmu.last_log().contains("unknown value reference 999999"));
+    // Wrong type: a Boolean read as Real.
+    let vr = fmu.vr("program.finished");
+    assert_eq!(unsafe { get(c, &vr, 1, &mut v) }, ERROR);
+    assert!(
+        fmu.last_log().contains("is of type Boolean"),
+        "{}",
+        fmu.last_log()
+    );
+    // NULL arrays with n > 0.
+    assert_eq!(unsafe { get(c, std::ptr::null(), 2, &mut v) }, ERROR);
+    assert!(fmu.last_log().contains("NULL array"));
+    // A fixed parameter after initialization.
+    let vr = fmu.vr("x.maxJerk");
+    assert_eq!(unsafe { set(c, &vr, 1, &1.0) }, ERROR);
+    assert!(
+        fmu.last_log().contains("cannot be set in state StepComplete"),
+        "{}",
+        fmu.last_log()
+    );
+    // An input is fine; a value out of its range is not.
+    let vr = fmu.vr("feedOverride");
+    assert_eq!(unsafe { set(c, &vr, 1, &0.5) }, OK);
+    assert_eq!(unsafe { set(c, &vr, 1, &3.0) }, ERROR);
+    // doStep off the slave's time.
+    assert_eq!(unsafe { step(c, 0.5, 1e-3, 1) }, ERROR);
+    assert!(
+        fmu.last_log().contains("is not the slave's time"),
+        "{}",
+        fmu.last_log()
+    );
+    assert_eq!(unsafe { step(c, 0.0, -1.0, 1) }, ERROR);
+    // Still usable after refused calls.
+    assert_eq!(unsafe { step(c, 0.0, 1e-3, 1) }, OK);
+    // NULL instance.
+    assert_eq!(unsafe { step(std::ptr::null_mut(), 0.0, 1e-3, 1) }, ERROR);
+    fmu.free(c);
+    // Wrong GUID: no instance, a log line.
+    let f = sym!(fmu, "fmi2Instantiate", FnInstantiate);
+    let name = CString::new("x").unwrap();
+    let guid = CString::new("{not-this}").unwrap();
+    let inst = unsafe {
+        f(
+            name.as_ptr(),
+            1,
+            guid.as_ptr(),
+            std::ptr::null(),
+            &*fmu.callbacks,
+            0,
+            0,
+        )
+    };
+    assert!(inst.is_null());
+    assert!(fmu.last_log().contains("GUID"));
+}
+
+#[test]
+fn bad_programs_fail_initialization_with_their_place() {
+    let fmu = Fmu::load();
+    for (program, want) in [
+        (
+            "G21 G90\nG1 X1 F100\nG41 D1 X2\n",
+            "program:3:1: unsupported G41 (cutter radius compensation)",
+        ),
+        ("G1 X1 F100\nG1 X2 Y$\n", "program:2:7: Y: a number is missing"),
+        (
+            "G21 G0 X10 Y0\nG3 X0 Y10.5 I-10 J0 F100\n",
+            "program:2:1: G3: end point is 0.5000 mm off the circle",
+        ),
+    ] {
+        let c = fmu.instantiate("prog");
+        assert_eq!(fmu.init(c, Some(program)), ERROR);
+        assert!(fmu.last_log().starts_with(want), "{} vs {want}", fmu.last_log());
+        // Reset brings the instance back; a good program then runs.
+        assert_eq!(fmu.call("fmi2Reset", c), OK);
+        assert_eq!(fmu.init(c, Some("G21 G1 X1 F600\nM30\n")), OK);
+        fmu.free(c);
+    }
+}
