@@ -49,7 +49,9 @@ test-rust:
 test-python: fmu
 	$(PY) -m pytest -q tests/python
 
+# The FMU benchmark loads target/release/libcnc_motion.so: build the libraries first.
 bench:
+	$(CARGO) build --release --workspace --lib
 	$(CARGO) bench --workspace
 
 lint:

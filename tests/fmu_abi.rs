@@ -35,10 +35,31 @@ unsafe extern "C" fn logger(
     (*(env as *const Log)).lock().unwrap().push(text);
 }
 
+/// target/<profile>/libcnc_motion.so beside target/<profile>/deps/fmu_abi-…; `cargo test` builds
+/// the rlib only, so the shared library is (re)built here, once per test process (a no-op when it
+/// is up to date, and never a stale library from an older build).
 fn library_path() -> PathBuf {
-    // target/<profile>/deps/fmu_abi-… → target/<profile>/libcnc_motion.so
+    static BUILD: Mutex<()> = Mutex::new(());
     let exe = std::env::current_exe().unwrap();
-    exe.parent().unwrap().parent().unwrap().join("libcnc_motion.so")
+    let profile_dir = exe.parent().unwrap().parent().unwrap().to_path_buf();
+    let lib = profile_dir.join("libcnc_motion.so");
+    static BUILT: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    let _guard = BUILD.lock().unwrap();
+    if !BUILT.swap(true, std::sync::atomic::Ordering::SeqCst) {
+        let target_dir = profile_dir.parent().unwrap();
+        let mut cmd = std::process::Command::new(env!("CARGO"));
+        cmd.args(["build", "--lib", "-p", "cnc-motion", "--target-dir"])
+            .arg(target_dir);
+        if profile_dir.file_name().is_some_and(|n| n == "release") {
+            cmd.arg("--release");
+        }
+        let status = cmd
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .status()
+            .expect("cargo build --lib");
+        assert!(status.success(), "building libcnc_motion.so failed");
+    }
+    lib
 }
 
 struct Fmu {

@@ -1,295 +1,464 @@
-//! The 7-phase jerk-limited S-curve of Pessoles et al. (seed 004, eq. 1–7 and the appendix):
-//! jerk ±J or 0 in each phase, acceleration zero at block ends. A block is
-//! ramp (v_in → v_p, phases 1–3), cruise at v_p (phase 4), ramp (v_p → v_out, phases 5–7).
+//! 7-phase jerk-limited S-curve (seed 004, eq. 1–7 and the appendix cases 1–10).
 //!
-//! The ten cases of the appendix are the combinations this code meets through three choices:
-//! each ramp reaches A (a constant-acceleration phase exists) or not, and the cruise exists
-//! (v_p = V_F) or not (v_p below V_F, found by a bounded solve); plus the two cases where the
-//! block is too short for V_out, where one ramp covers the whole block and the exit speed actually
-//! reached is reported.
+//! A block is: ramp 1 from v_in to the cruise speed v_c (phases 1–3, jerk ±J, a plateau at ±A
+//! when the speed change exceeds A²/J), cruise at v_c (phase 4), ramp 2 from v_c to v_end
+//! (phases 5–7). Each ramp is the fastest speed change with a = 0 at both ends, so its time is
+//! T(Δv) = 2·sqrt(Δv/J) (Δv ≤ A²/J) or Δv/A + A/J, and its distance is (v1 + v2)/2 · T.
+//!
+//! The ten appendix cases are the regimes of the two ramps (triangular / with plateau) times
+//! "V_F reached or not" times "V_Out reached or not". Instead of one branch per case, the peak
+//! speed is found on the total ramp distance D(v_c) = d(v_in, v_c) + d(v_c, v_out), which is
+//! increasing and convex in u = sqrt(v_c − max(v_in, v_out)): closed form when both ramps have a
+//! plateau (quadratic), Cardano start + Newton otherwise (a bounded number of steps; on a convex
+//! increasing function Newton lands right of the root after one step and then decreases
+//! monotonically to it). Rest to rest this is the time-optimal profile.
 
 use super::{BlockRequest, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
-/// One block's 7-phase profile: phase durations, jerks, and the state at each phase start.
+/// Newton steps for the peak speed (quadratic convergence from a Cardano start: 3–6 used).
+const NEWTON_STEPS: usize = 40;
+/// Bisection steps for the rare requests with V_F below an end speed, or an unreachable slow-down.
+const BISECTION_STEPS: usize = 64;
+
+/// Phase durations `tau`, the jerk of the two ramps and the distance and speed at each phase
+/// start, so that `at(t)` is one cubic (eq. 1–7). Kept to 26 numbers (the `Profile` enum holds it
+/// inline): phase jerks, start accelerations and start times follow from these (methods below).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Scurve7 {
-    /// τ1 … τ7 (s).
+    /// Phase durations τ1…τ7 (s).
     pub tau: [f64; 7],
-    /// Jerk in each phase (m/s³).
-    pub jerk: [f64; 7],
-    /// State (s, v, a) at the start of each phase and at the end (index 7).
-    pub start: [[f64; 3]; 8],
-    /// Start time of each phase and the end (index 7).
-    pub t0: [f64; 8],
+    /// Distance (m) and speed (m/s) at each phase start; v_start[0] = v_in, v_start[3] = cruise.
+    pub s_start: [f64; 7],
+    pub v_start: [f64; 7],
+    /// Jerk of phase 1 (ramp 1) and phase 5 (ramp 2): +J speeding up, −J slowing down, 0 if the
+    /// ramp is empty; phases 3 and 7 have the opposite jerk, phases 2, 4, 6 none.
+    pub ramp_jerk: [f64; 2],
+    pub v_end: f64,
+    pub duration: f64,
+    pub length: f64,
 }
 
-/// Time of the fastest change of speed by Δv ≥ 0 with a = 0 at both ends (eq. 1–3):
-/// (jerk phase τ_j, constant-acceleration phase τ_a).
-fn ramp_times(dv: f64, lim: &Limits) -> (f64, f64) {
-    let (a, j) = (lim.a_max, lim.j_max);
-    if dv >= a * a / j {
-        (a / j, dv / a - a / j)
+/// One ramp between two speeds: jerk phase, plateau, jerk phase (a = 0 at both ends).
+#[derive(Clone, Copy, Debug)]
+struct Ramp {
+    /// Duration of each of the two jerk phases.
+    t_jerk: f64,
+    /// Duration of the acceleration plateau.
+    t_plateau: f64,
+    /// +1 speeding up, −1 slowing down.
+    sign: f64,
+}
+
+fn ramp(v1: f64, v2: f64, a: f64, j: f64) -> Ramp {
+    let dv = (v2 - v1).abs();
+    let sign = if v2 >= v1 { 1.0 } else { -1.0 };
+    if dv * j <= a * a {
+        // A not reached (seed cases 2, 6, 10): τ = sqrt(Δv/J).
+        Ramp {
+            t_jerk: (dv / j).sqrt(),
+            t_plateau: 0.0,
+            sign,
+        }
     } else {
-        ((dv / j).sqrt(), 0.0)
+        // Plateau at ±A (seed eq. 60, 70): τ_jerk = A/J, τ_plateau = Δv/A − A/J.
+        Ramp {
+            t_jerk: a / j,
+            t_plateau: dv / a - a / j,
+            sign,
+        }
     }
 }
 
-/// Distance of the fastest speed change v1 → v2: the ramp is point-symmetric in time, so the
-/// distance is the mean speed times the duration, (v1 + v2)/2 · (2τ_j + τ_a).
-pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
-    let (tj, ta) = ramp_times((v2 - v1).abs(), lim);
-    0.5 * (v1 + v2) * (2.0 * tj + ta)
+/// Ramp time T(Δv).
+fn ramp_time(dv: f64, a: f64, j: f64) -> f64 {
+    if dv * j <= a * a {
+        2.0 * (dv / j).sqrt()
+    } else {
+        dv / a + a / j
+    }
 }
 
-/// Largest v ≥ v0 with ramp_distance(v0, v) ≤ length, in closed form: below Δv = A²/J the ramp
-/// is (v + v0)·sqrt(Δv/J) = L, with w = sqrt(Δv) the depressed cubic w³ + 2v0·w − L·sqrt(J) = 0
-/// (one real root, Cardano); above, (v² − v0²)/(2A) + (v + v0)·A/(2J) = L, a quadratic.
-fn max_speed_after(length: f64, v0: f64, lim: &Limits) -> f64 {
+/// Distance of the fastest change v1 → v2 with a = 0 at both ends: (v1 + v2)/2 · T(|v2 − v1|).
+/// Symmetric in (v1, v2); increasing in the larger speed for a fixed smaller one.
+pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
+    if !valid_limits(lim) {
+        return 0.0;
+    }
+    let (v1, v2) = (v1.max(0.0), v2.max(0.0));
+    0.5 * (v1 + v2) * ramp_time((v2 - v1).abs(), lim.a_max, lim.j_max)
+}
+
+fn valid_limits(lim: &Limits) -> bool {
+    lim.a_max.is_finite() && lim.j_max.is_finite() && lim.a_max > 0.0 && lim.j_max > 0.0
+}
+
+/// Largest speed change x ≥ 0 from base speed v (up or down to v) with d(v, v + x) ≤ length.
+/// d is increasing in x, so this is the one root of d(v, v + x) = length.
+fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
+    if !valid_limits(lim) || length.is_nan() || length <= 0.0 {
+        return 0.0;
+    }
     let (a, j) = (lim.a_max, lim.j_max);
-    let length = length.max(0.0);
-    let v0 = v0.max(0.0);
-    let dv_a = a * a / j;
-    let boundary = (2.0 * v0 + dv_a) * a / j;
-    if length <= boundary {
-        let p = 2.0 * v0;
-        let q = length * j.sqrt();
-        let disc = (0.25 * q * q + p * p * p / 27.0).sqrt();
-        // Cardano's w = c − d with c = cbrt(q/2 + disc), d = p/(3c), written without the
-        // cancellation of c − d: c³ − d³ = q, so w = q / (c² + cd + d²), cd = p/3.
-        let c = (0.5 * q + disc).cbrt();
-        let w = if c > 0.0 {
-            let d = p / (3.0 * c);
-            q / (c * c + p / 3.0 + d * d)
+    let v = v.max(0.0);
+    let ac = a * a / j;
+    // Without plateau: (2v + x)·sqrt(x/J) = L, with s = sqrt(x): s³ + 2v·s − L·sqrt(J) = 0 (Cardano).
+    let s = cubic_root_pos(2.0 * v, length * j.sqrt());
+    let x = s * s;
+    if x <= ac {
+        return x;
+    }
+    // With plateau: (2v + x)(x/A + A/J) = 2L → x²/A + x(A/J + 2v/A) + 2vA/J − 2L = 0.
+    let b = a / j + 2.0 * v / a;
+    let c = 2.0 * v * a / j - 2.0 * length;
+    positive_quadratic_root(1.0 / a, b, c)
+}
+
+/// The real root of s³ + p·s − q = 0 with p ≥ 0, q ≥ 0 (one real root, ≥ 0), polished by
+/// two Newton steps against the cancellation in Cardano's formula when p³ ≫ q².
+fn cubic_root_pos(p: f64, q: f64) -> f64 {
+    if q <= 0.0 {
+        return 0.0;
+    }
+    let disc = (0.25 * q * q + p * p * p / 27.0).sqrt();
+    let w = (0.5 * q + disc).cbrt();
+    let mut s = if w > 0.0 { w - p / (3.0 * w) } else { 0.0 };
+    if s.is_nan() || s <= 0.0 || s * p > 2.0 * q {
+        // Cancellation: for p³ ≫ q² the root is ≈ q/p.
+        s = q / p.max(f64::MIN_POSITIVE);
+    }
+    for _ in 0..2 {
+        let f = s * s * s + p * s - q;
+        let df = 3.0 * s * s + p;
+        if df > 0.0 {
+            s -= f / df;
+        }
+    }
+    s.max(0.0)
+}
+
+/// Positive root of a·x² + b·x + c = 0 (a > 0, b ≥ 0, c ≤ 0), without cancellation.
+fn positive_quadratic_root(a: f64, b: f64, c: f64) -> f64 {
+    let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
+    let r = -2.0 * c / (b + disc);
+    if r.is_finite() {
+        r.max(0.0)
+    } else {
+        0.0
+    }
+}
+
+/// v + `max_rise` with the rounding of the closed form removed: step the speed down (by ulps of
+/// v when the rise is tiny next to v) until the ramp distance, evaluated the way `plan` does, is
+/// ≤ length, so that planning with max_entry/max_exit really reaches the other end.
+fn max_speed_fitting(length: f64, v: f64, lim: &Limits) -> f64 {
+    let v = v.max(0.0);
+    let w = v + max_rise(length, v, lim);
+    fit_down(w, v, length, |w| ramp_distance(v, w, lim))
+}
+
+/// Largest entry speed v_in ≥ v_out from which the S-curve slows to v_out within `length`.
+/// d(v_in, v_out) is increasing in v_in for a fixed v_out, so the closed-form root is the true max.
+pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
+    let v_out = v_out.max(0.0);
+    max_speed_fitting(length, v_out, lim)
+}
+
+/// Largest exit speed v_out ≥ v_in the S-curve reaches from v_in within `length`.
+pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
+    let v_in = v_in.max(0.0);
+    max_speed_fitting(length, v_in, lim)
+}
+
+/// Total ramp distance v_in → v_c → v_out as a function of u = sqrt(v_c − v_hi), and dD/du.
+/// Both ramps speed up into v_c ≥ v_hi = max(v_in, v_out), so D is increasing and convex in u.
+fn peak_distance(u: f64, v_in: f64, v_out: f64, a: f64, j: f64) -> (f64, f64) {
+    let (d1, g1) = rise_distance(u, v_in, v_in.max(v_out), a, j);
+    let (d2, g2) = rise_distance(u, v_out, v_in.max(v_out), a, j);
+    (d1 + d2, g1 + g2)
+}
+
+/// d(v1, v_c) and its derivative w.r.t. u, with v_c = v_hi + u², v1 ≤ v_hi.
+fn rise_distance(u: f64, v1: f64, v_hi: f64, a: f64, j: f64) -> (f64, f64) {
+    let x = (v_hi - v1) + u * u;
+    if x * j <= a * a {
+        let r = (x / j).sqrt();
+        let d = (2.0 * v1 + x) * r;
+        // dd/dx = r + (2v1 + x)/(2·J·r); times dx/du = 2u. At x = 0 (only when u = 0) the limit is
+        // 2v1/sqrt(J) · (u/r) with u/r = sqrt(J) when v1 = v_hi.
+        let g = if r > 0.0 {
+            2.0 * u * (r + (2.0 * v1 + x) / (2.0 * j * r))
+        } else {
+            2.0 * v1 / j.sqrt()
+        };
+        (d, g)
+    } else {
+        let t = x / a + a / j;
+        let d = 0.5 * (2.0 * v1 + x) * t;
+        let g = 2.0 * u * (0.5 * t + 0.5 * (2.0 * v1 + x) / a);
+        (d, g)
+    }
+}
+
+/// Peak speed v_c ∈ [v_hi, v_cap] with D(v_c) = length, given D(v_hi) ≤ length < D(v_cap).
+fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) -> f64 {
+    let v_hi = v_in.max(v_out);
+    let ac = a * a / j;
+    let u_max = (v_cap - v_hi).max(0.0).sqrt();
+    // Both ramps with a plateau (seed case 3): quadratic in v_c,
+    // v_c²/A + v_c·A/J − (v_in² + v_out²)/(2A) + (v_in + v_out)·A/(2J) − L = 0.
+    let u_plateau = ac.sqrt();
+    if u_plateau < u_max && peak_distance(u_plateau, v_in, v_out, a, j).0 <= length {
+        let c = -(v_in * v_in + v_out * v_out) / (2.0 * a) + (v_in + v_out) * a / (2.0 * j) - length;
+        let vc = positive_quadratic_root(1.0 / a, a / j, c);
+        return vc.clamp(v_hi, v_cap);
+    }
+    // Start: Cardano for both ramps triangular from v_hi (exact when v_in = v_out, e.g. rest to
+    // rest: 2(2v + u²)·u/sqrt(J) = L), shifted by the ramp v_lo → v_hi.
+    let d0 = peak_distance(0.0, v_in, v_out, a, j).0;
+    let mut u = cubic_root_pos(2.0 * v_hi, 0.5 * (length - d0).max(0.0) * j.sqrt()).min(u_max);
+    for _ in 0..NEWTON_STEPS {
+        let (d, g) = peak_distance(u, v_in, v_out, a, j);
+        if g.is_nan() || g <= 0.0 {
+            break;
+        }
+        let next = (u - (d - length) / g).clamp(0.0, u_max);
+        let step = (next - u).abs();
+        u = next;
+        // Quadratic convergence: a residual below 1e-8 leaves ~1e-16 after this step (the rest is
+        // taken by fit_down or the cruise).
+        if step <= 1e-15 * u.max(1e-300) || (d - length).abs() <= 1e-8 * length {
+            break;
+        }
+    }
+    (v_hi + u * u).clamp(v_hi, v_cap)
+}
+
+/// Step `w` down towards `floor` (a few ulps at first, doubling) until f(w) ≤ target; f(floor) ≤
+/// target is known, so at most a bounded number of steps.
+fn fit_down(mut w: f64, floor: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let mut step = w * f64::EPSILON;
+    for _ in 0..64 {
+        if f(w) <= target || w <= floor {
+            break;
+        }
+        w = (w - step).max(floor);
+        step *= 2.0;
+    }
+    w.max(floor)
+}
+
+/// Largest x in [lo, hi] with f(x) ≤ target by bisection, given f(lo) ≤ target < f(hi) (bounded).
+fn bisect(mut lo: f64, mut hi: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
+    for _ in 0..BISECTION_STEPS {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) <= target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// The block's profile: V_F if the length allows, the highest peak V_F' otherwise, and the
+/// exit speed v_out if reachable within L, the closest reachable exit otherwise (reported in v_end).
+pub fn plan(req: &BlockRequest) -> Scurve7 {
+    let lim = &req.limits;
+    let v_in = finite_or_zero(req.v_in).max(0.0);
+    if !valid_limits(lim) {
+        return Scurve7::build(v_in, v_in, v_in, 0.0, 1.0, 1.0);
+    }
+    let (a, j) = (lim.a_max, lim.j_max);
+    let length = finite_or_zero(req.length).max(0.0);
+    let v_out = finite_or_zero(req.v_out).max(0.0);
+    let mut v_feed = finite_or_zero(req.v_feed).max(0.0);
+    if lim.v_max.is_finite() && lim.v_max > 0.0 {
+        v_feed = v_feed.min(lim.v_max);
+    }
+    let reach = ramp_distance(v_in, v_out, lim);
+    if reach > length {
+        // V_Out not reachable (seed cases 1, 2): one ramp over the whole length.
+        if v_out > v_in {
+            let v_end = max_exit(length, v_in, lim).min(v_out);
+            return Scurve7::build(v_in, v_end, v_end, length, a, j);
+        }
+        // Slowing down: D(v_in, x) is unimodal in x (see plan/mod.rs), so take the largest exit
+        // below v_out if a stop fits, else the lowest one above v_out; cruise at v_in first.
+        let d = |x: f64| ramp_distance(v_in, x, lim);
+        let v_end = if d(0.0) <= length {
+            bisect(0.0, v_out, length, d)
+        } else {
+            // d(v_in) = 0 ≤ L < d(v_out): largest speed drop that fits, searched downwards from v_in.
+            let drop = bisect(0.0, v_in - v_out, length, |dv| d(v_in - dv));
+            v_in - drop
+        };
+        return Scurve7::build(v_in, v_in, v_end, length, a, j);
+    }
+    let v_hi = v_in.max(v_out);
+    let v_c = if v_feed >= v_hi {
+        let v_cap = v_feed;
+        let total = |v: f64| ramp_distance(v_in, v, lim) + ramp_distance(v, v_out, lim);
+        if total(v_cap) <= length {
+            v_cap // V_F reached (seed cases 7–10)
+        } else {
+            // V_F' (seed cases 3–6), then made to fit with the speed as stored: v_c = v_hi + u²
+            // rounds, and a short ramp's distance is sensitive to it.
+            let v_c = solve_peak(length, v_in, v_out, v_cap, a, j);
+            fit_down(v_c, v_hi, length, total)
+        }
+    } else {
+        // V_F below an end speed (the look-ahead never asks this): cruise at V_F if the length
+        // allows (seed cases 9, 10 with v_in > V_F), else a cruise speed in [V_F, v_hi] where the
+        // ramps fill L (bisection between D(V_F) > L and D(v_hi) = d(v_in, v_out) ≤ L).
+        let total = |v: f64| ramp_distance(v_in, v, lim) + ramp_distance(v, v_out, lim);
+        if total(v_feed) <= length {
+            v_feed
+        } else {
+            let excess = bisect(0.0, v_hi - v_feed, length, |dv| total(v_hi - dv));
+            v_hi - excess
+        }
+    };
+    Scurve7::build(v_in, v_c, v_out, length, a, j)
+}
+
+fn finite_or_zero(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        0.0
+    }
+}
+
+impl Scurve7 {
+    /// Ramp v_in → v_c, cruise at v_c for what is left of `length`, ramp v_c → v_end; phase start
+    /// states integrated with eq. 1–7.
+    fn build(v_in: f64, v_c: f64, v_end: f64, length: f64, a: f64, j: f64) -> Scurve7 {
+        let r1 = ramp(v_in, v_c, a, j);
+        let r2 = ramp(v_c, v_end, a, j);
+        let ramps = 0.5 * (v_in + v_c) * (2.0 * r1.t_jerk + r1.t_plateau)
+            + 0.5 * (v_c + v_end) * (2.0 * r2.t_jerk + r2.t_plateau);
+        let cruise = if v_c > 0.0 {
+            ((length - ramps) / v_c).max(0.0)
         } else {
             0.0
         };
-        // One Newton step polishes the last bits.
-        let f = w * w * w + p * w - q;
-        let df = 3.0 * w * w + p;
-        let w = if df > 0.0 { (w - f / df).max(0.0) } else { w };
-        v0 + w * w
-    } else {
-        // v²/(2A) + v·A/(2J) + (−v0²/(2A) + v0·A/(2J) − L) = 0
-        let qa = 0.5 / a;
-        let qb = 0.5 * a / j;
-        let qc = -v0 * v0 * qa + v0 * qb - length;
-        (-qb + (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa)
-    }
-}
-
-/// Largest entry speed v_in ≥ v_out that can slow to v_out within `length`.
-pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
-    max_speed_after(length, v_out, lim)
-}
-
-/// Largest exit speed v_out ≥ v_in reachable from v_in within `length`.
-pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
-    max_speed_after(length, v_in, lim)
-}
-
-/// Distance of the ramp v1 → vp (vp ≥ v1) and its derivative in vp: long ramps (A reached)
-/// D = (v1 + vp)/2 · (Δv/A + A/J), short ones D = (v1 + vp)·τ_j with τ_j = sqrt(Δv/J).
-fn ramp_distance_slope(v1: f64, vp: f64, lim: &Limits) -> (f64, f64) {
-    let (a, j) = (lim.a_max, lim.j_max);
-    let dv = (vp - v1).max(0.0);
-    if dv >= a * a / j {
-        let t = dv / a + a / j;
-        (0.5 * (v1 + vp) * t, 0.5 * t + 0.5 * (v1 + vp) / a)
-    } else {
-        let tj = (dv / j).sqrt();
-        let slope = if tj > 0.0 {
-            tj + (v1 + vp) / (2.0 * j * tj)
-        } else {
-            f64::INFINITY
+        let j1 = if r1.t_jerk > 0.0 { r1.sign * j } else { 0.0 };
+        let j2 = if r2.t_jerk > 0.0 { r2.sign * j } else { 0.0 };
+        let mut p = Scurve7 {
+            tau: [
+                r1.t_jerk,
+                r1.t_plateau,
+                r1.t_jerk,
+                cruise,
+                r2.t_jerk,
+                r2.t_plateau,
+                r2.t_jerk,
+            ],
+            s_start: [0.0; 7],
+            v_start: [0.0; 7],
+            ramp_jerk: [j1, j2],
+            v_end,
+            duration: 0.0,
+            length: 0.0,
         };
-        ((v1 + vp) * tj, slope)
+        let jerk = p.jerk();
+        let acc = p.a_start();
+        let (mut t, mut s, mut v) = (0.0, 0.0, v_in);
+        for k in 0..7 {
+            p.s_start[k] = s;
+            p.v_start[k] = v;
+            let (ds, dv, _) = advance(p.tau[k], v, acc[k], jerk[k]);
+            t += p.tau[k];
+            s += ds;
+            v += dv;
+            // The speed at the end of ramp 1 and in the cruise is known exactly.
+            if k == 2 || k == 3 {
+                v = v_c;
+            }
+        }
+        p.duration = t;
+        p.length = s;
+        p
+    }
+
+    pub fn v_in(&self) -> f64 {
+        self.v_start[0]
+    }
+
+    /// Cruise speed of phase 4: V_F, or V_F' when V_F is not reached.
+    pub fn v_cruise(&self) -> f64 {
+        self.v_start[3]
+    }
+
+    /// Jerk of each phase (m/s³).
+    pub fn jerk(&self) -> [f64; 7] {
+        let [j1, j2] = self.ramp_jerk;
+        [j1, 0.0, -j1, 0.0, j2, 0.0, -j2]
+    }
+
+    /// Acceleration at each phase start (m/s²): 0 at the ramp ends, the ramp's peak on its plateau.
+    pub fn a_start(&self) -> [f64; 7] {
+        let a1 = self.ramp_jerk[0] * self.tau[0];
+        let a2 = self.ramp_jerk[1] * self.tau[4];
+        [0.0, a1, a1, 0.0, 0.0, a2, a2]
+    }
+
+    /// Start time of each phase (s).
+    pub fn t_start(&self) -> [f64; 7] {
+        let mut t = [0.0; 7];
+        for k in 1..7 {
+            t[k] = t[k - 1] + self.tau[k - 1];
+        }
+        t
     }
 }
 
-/// Peak speed v_p ≥ max(v_in, v_out) with ramp(v_in, v_p) + ramp(v_p, v_out) = L, when the
-/// cruise does not fit. Both distances rise with v_p, so the root is unique. When both ramps
-/// reach A it is the root of a quadratic, v_p²/A + v_p·A/J + c = 0; otherwise that root starts a
-/// Newton iteration with the analytic slope, kept inside a shrinking bracket (bounded steps).
-fn peak_speed(length: f64, v_in: f64, v_out: f64, v_hi: f64, lim: &Limits) -> f64 {
-    let (a, j) = (lim.a_max, lim.j_max);
-    let mut lo = v_in.max(v_out);
-    let mut hi = v_hi;
-    let c = -(v_in * v_in + v_out * v_out) / (2.0 * a) + (v_in + v_out) * a / (2.0 * j) - length;
-    let (qa, qb) = (1.0 / a, a / j);
-    let mut v = (-qb + (qb * qb - 4.0 * qa * c).max(0.0).sqrt()) / (2.0 * qa);
-    let dv_a = a * a / j;
-    if v - v_in >= dv_a && v - v_out >= dv_a && v > lo && v < hi {
-        return v;
-    }
-    if !(v > lo && v < hi) {
-        v = 0.5 * (lo + hi);
-    }
-    for _ in 0..60 {
-        let (d1, s1) = ramp_distance_slope(v_in, v, lim);
-        let (d2, s2) = ramp_distance_slope(v_out, v, lim);
-        let f = d1 + d2 - length;
-        if f > 0.0 {
-            hi = v;
-        } else {
-            lo = v;
-        }
-        let newton = v - f / (s1 + s2);
-        let next = if newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (next - v).abs() <= 4.0 * f64::EPSILON * v || hi - lo <= 4.0 * f64::EPSILON * hi {
-            v = next;
-            break;
-        }
-        v = next;
-    }
-    v.clamp(v_in.max(v_out), v_hi)
-}
-
-/// Jerks and durations of a ramp v1 → v2 (3 phases).
-fn ramp(v1: f64, v2: f64, lim: &Limits) -> ([f64; 3], [f64; 3]) {
-    let (tj, ta) = ramp_times((v2 - v1).abs(), lim);
-    let j = if v2 >= v1 { lim.j_max } else { -lim.j_max };
-    ([tj, ta, tj], [j, 0.0, -j])
-}
-
-pub fn plan(req: &BlockRequest) -> Scurve7 {
-    let lim = &req.limits;
-    let length = req.length.max(0.0);
-    let v_in = req.v_in.max(0.0);
-    let mut v_out = req.v_out.max(0.0);
-    let v_feed = req.v_feed.max(0.0);
-    let mut v_peak;
-    let mut cruise;
-    // A block whose exit ramp overshoots L by rounding only (the planner's max_entry/max_exit
-    // speeds) is feasible: the overshoot is below a femtometre per metre.
-    if ramp_distance(v_in, v_out, lim) > length * (1.0 + 1e-12) + 1e-15 {
-        // V_Out cannot be reached (appendix, cases where the block is too short).
-        if v_out > v_in {
-            v_out = max_exit(length, v_in, lim).min(v_out);
-            v_peak = v_in;
-            cruise = 0.0;
-        } else {
-            // Slowing down: the ramp distance rises then falls as the exit speed goes to 0, so the
-            // feasible exits closest to V_out are the crossings above and below it.
-            let above = exit_crossing(length, v_in, v_out, v_in, lim);
-            let below = if ramp_distance(v_in, 0.0, lim) <= length {
-                Some(exit_crossing(length, v_in, 0.0, v_out, lim))
-            } else {
-                None
-            };
-            v_out = match below {
-                Some(b) if v_out - b <= above - v_out => b,
-                _ => above,
-            };
-            v_peak = v_in;
-            cruise = length - ramp_distance(v_in, v_out, lim);
-        }
-    } else {
-        let v_top = v_feed.max(v_in).max(v_out);
-        v_peak = v_top;
-        cruise = length - ramp_distance(v_in, v_peak, lim) - ramp_distance(v_peak, v_out, lim);
-        if cruise < 0.0 {
-            let direct = ramp_distance(v_in, v_out, lim);
-            // When one ramp v_in → v_out already fills L (the planner's max_exit/max_entry speeds),
-            // a peak a few ulps above would add two ramps of sqrt(ulp/J) seconds: take none.
-            v_peak = if direct >= length * (1.0 - 1e-12) {
-                v_in.max(v_out)
-            } else {
-                peak_speed(length, v_in, v_out, v_top, lim)
-            };
-            cruise = 0.0;
-        }
-    }
-    if v_peak <= 0.0 {
-        cruise = 0.0;
-        v_peak = 0.0;
-    }
-    let (t_up, j_up) = ramp(v_in, v_peak, lim);
-    let (t_dn, j_dn) = ramp(v_peak, v_out, lim);
-    let t_cruise = if v_peak > 0.0 {
-        cruise.max(0.0) / v_peak
-    } else {
-        0.0
-    };
-    let tau = [t_up[0], t_up[1], t_up[2], t_cruise, t_dn[0], t_dn[1], t_dn[2]];
-    let jerk = [j_up[0], j_up[1], j_up[2], 0.0, j_dn[0], j_dn[1], j_dn[2]];
-    let mut start = [[0.0; 3]; 8];
-    let mut t0 = [0.0; 8];
-    start[0] = [0.0, v_in, 0.0];
-    for i in 0..7 {
-        start[i + 1] = advance(start[i], jerk[i], tau[i]);
-        t0[i + 1] = t0[i] + tau[i];
-        if i == 2 || i == 6 {
-            // End of a ramp: acceleration is zero and the speed is the target, exactly.
-            start[i + 1][2] = 0.0;
-            start[i + 1][1] = if i == 2 { v_peak } else { v_out };
-        }
-    }
-    Scurve7 { tau, jerk, start, t0 }
-}
-
-/// Exit speed x between `lo` and `hi` where the slowing ramp from v_in covers exactly `length`
-/// (ramp_distance(v_in, lo) and ramp_distance(v_in, hi) on opposite sides of `length`).
-fn exit_crossing(length: f64, v_in: f64, lo: f64, hi: f64, lim: &Limits) -> f64 {
-    let f = |x: f64| ramp_distance(v_in, x, lim) - length;
-    let (mut a, mut b) = (lo, hi);
-    let fa = f(a);
-    for _ in 0..80 {
-        let m = 0.5 * (a + b);
-        if (f(m) > 0.0) == (fa > 0.0) {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
-    // The side where the ramp fits.
-    if f(a) <= 0.0 {
-        a
-    } else {
-        b
-    }
-}
-
-fn advance(state: [f64; 3], j: f64, t: f64) -> [f64; 3] {
-    let [s, v, a] = state;
-    [
-        s + v * t + 0.5 * a * t * t + j * t * t * t / 6.0,
-        v + a * t + 0.5 * j * t * t,
-        a + j * t,
-    ]
+/// Change of (s, v, a) over dt from speed v, acceleration a, constant jerk (eq. 1–7).
+#[inline]
+fn advance(dt: f64, v: f64, a: f64, jerk: f64) -> (f64, f64, f64) {
+    let ds = dt * (v + dt * (0.5 * a + dt * jerk / 6.0));
+    let dv = dt * (a + 0.5 * jerk * dt);
+    (ds, dv, jerk * dt)
 }
 
 impl FeedLaw for Scurve7 {
     fn duration(&self) -> f64 {
-        self.t0[7]
+        self.duration
     }
     fn length(&self) -> f64 {
-        self.start[7][0]
+        self.length
     }
     fn v_end(&self) -> f64 {
-        self.start[7][1]
+        self.v_end
     }
     fn at(&self, t: f64) -> Kin {
-        if t >= self.t0[7] {
-            let [s, v, _] = self.start[7];
-            return Kin { s, v, a: 0.0, j: 0.0 };
+        if t >= self.duration || t.is_nan() {
+            return Kin {
+                s: self.length,
+                v: self.v_end,
+                a: 0.0,
+                j: 0.0,
+            };
         }
-        let t = t.max(0.0);
-        let mut i = 0;
-        while i < 6 && t >= self.t0[i + 1] {
-            i += 1;
+        // Phase k holding t (t < duration, so it exists; empty phases are skipped).
+        let mut rest = t.max(0.0);
+        let mut k = 0;
+        while k < 6 && rest >= self.tau[k] {
+            rest -= self.tau[k];
+            k += 1;
         }
-        let dt = t - self.t0[i];
-        let [s, v, a] = advance(self.start[i], self.jerk[i], dt);
+        let jerk = self.jerk()[k];
+        let a0 = self.a_start()[k];
+        let (ds, dv, da) = advance(rest, self.v_start[k], a0, jerk);
         Kin {
-            s,
-            v,
-            a,
-            j: self.jerk[i],
+            s: self.s_start[k] + ds,
+            v: self.v_start[k] + dv,
+            a: a0 + da,
+            j: jerk,
         }
     }
     fn phases(&self) -> Vec<f64> {
