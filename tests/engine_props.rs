@@ -114,7 +114,7 @@ fn point() -> impl Strategy<Value = [f64; 3]> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
     #[test]
     fn random_line_programs_stay_within_limits(
@@ -244,4 +244,129 @@ fn state_round_trip_is_bit_identical() {
         assert_eq!(a.tick(), b.tick());
     }
     assert!(b.restore_state(&saved[..3]).is_err());
+}
+
+/// A move of a random program: a line by (dx, dy, dz) mm, or an arc of `sweep` rad about a centre
+/// at `radius` mm in direction `heading`, G2 or G3, with a helix rise dz.
+#[derive(Clone, Debug)]
+enum Move {
+    Line([f64; 3]),
+    Arc {
+        radius: f64,
+        heading: f64,
+        sweep: f64,
+        clockwise: bool,
+        dz: f64,
+    },
+}
+
+fn a_move() -> impl Strategy<Value = Move> {
+    prop_oneof![
+        [-30.0..30.0f64, -30.0..30.0f64, -5.0..5.0f64].prop_map(Move::Line),
+        (
+            2.0..30.0f64,
+            0.0..6.28f64,
+            0.2..4.0f64,
+            any::<bool>(),
+            -3.0..3.0f64
+        )
+            .prop_map(|(radius, heading, sweep, clockwise, dz)| Move::Arc {
+                radius,
+                heading,
+                sweep,
+                clockwise,
+                dz
+            }),
+    ]
+}
+
+/// The program text (coordinates rounded to 0.1 µm as a post-processor writes them), its
+/// programmed length (mm) and end point (m).
+fn arc_program(moves: &[Move], exact_stop: bool) -> (String, f64, [f64; 3]) {
+    let mut text = String::from("G21 G90 G17 F2400\n");
+    text.push_str(if exact_stop { "G61\n" } else { "G64\n" });
+    let round = |x: f64| format!("{x:.4}").parse::<f64>().unwrap();
+    let mut p = [0.0f64; 3];
+    let mut length = 0.0;
+    for m in moves {
+        match *m {
+            Move::Line(d) => {
+                let q = [round(p[0] + d[0]), round(p[1] + d[1]), round(p[2] + d[2])];
+                writeln!(text, "G1 X{:.4} Y{:.4} Z{:.4}", q[0], q[1], q[2]).unwrap();
+                length += ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2)).sqrt();
+                p = q;
+            }
+            Move::Arc {
+                radius,
+                heading,
+                sweep,
+                clockwise,
+                dz,
+            } => {
+                let c = [p[0] + radius * heading.cos(), p[1] + radius * heading.sin()];
+                let start = (p[1] - c[1]).atan2(p[0] - c[0]);
+                let end = if clockwise { start - sweep } else { start + sweep };
+                let q = [
+                    round(c[0] + radius * end.cos()),
+                    round(c[1] + radius * end.sin()),
+                    round(p[2] + dz),
+                ];
+                let (i, j) = (round(c[0] - p[0]), round(c[1] - p[1]));
+                let g = if clockwise { 2 } else { 3 };
+                writeln!(
+                    text,
+                    "G{g} X{:.4} Y{:.4} Z{:.4} I{i:.4} J{j:.4}",
+                    q[0], q[1], q[2]
+                )
+                .unwrap();
+                // The arc as written: centre moved onto the chord's bisector, as the reader does.
+                let (mx, my) = (0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]));
+                let (ux, uy) = (q[0] - p[0], q[1] - p[1]);
+                let chord = ux.hypot(uy);
+                let (mut cx, mut cy) = (p[0] + i, p[1] + j);
+                if chord > 0.0 {
+                    let along = ((cx - mx) * ux + (cy - my) * uy) / (chord * chord);
+                    cx -= along * ux;
+                    cy -= along * uy;
+                }
+                let r = (p[0] - cx).hypot(p[1] - cy);
+                let a0 = (p[1] - cy).atan2(p[0] - cx);
+                let a1 = (q[1] - cy).atan2(q[0] - cx);
+                let two_pi = std::f64::consts::TAU;
+                let mut phi = if clockwise { a0 - a1 } else { a1 - a0 };
+                phi = phi.rem_euclid(two_pi);
+                if phi == 0.0 {
+                    phi = two_pi;
+                }
+                length += (r * phi).hypot(q[2] - p[2]);
+                p = q;
+            }
+        }
+    }
+    text.push_str("M30\n");
+    (text, length * 1e-3, p.map(|x| x * 1e-3))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_line_and_arc_programs_stay_within_limits(
+        moves in prop::collection::vec(a_move(), 1..7),
+        exact_stop in any::<bool>(),
+        kind in prop::sample::select(vec![ProfileKind::Scurve7, ProfileKind::Quintic, ProfileKind::Jerk15]),
+    ) {
+        let machine = Machine { profile: kind, ..Machine::default() };
+        let (text, length, end) = arc_program(&moves, exact_stop);
+        let r = run(&text, &machine);
+        for i in 0..3 {
+            prop_assert!((r.end[i] - end[i]).abs() <= 1e-12, "end {:?} vs {:?}", r.end, end);
+        }
+        // Corners only cut; with exact stops nothing is cut.
+        prop_assert!(r.distance <= length * (1.0 + 1e-9) + 1e-12, "{} vs {}", r.distance, length);
+        if exact_stop {
+            prop_assert!((r.distance - length).abs() <= 1e-9 * length + 1e-12, "{} vs {}", r.distance, length);
+        }
+        check_limits(&r, &machine, true);
+    }
 }

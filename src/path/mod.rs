@@ -391,8 +391,13 @@ impl PathBuilder {
             }
         } else if 1.0 - cos <= corner::TANGENT_EPS {
             curvature_change_speed(sub(g_out.d2, g_in.d2), m).min(feeds)
-        } else {
+        } else if m.corner == CornerMode::AccelerationPeriod {
+            // Seed 003's rule allows the velocity step of one period at the corner.
             corner_feed(t_in, t_out, m).min(feeds)
+        } else {
+            // No transition is inserted at a sharp corner with an arc: stop there, so that the
+            // axis acceleration and jerk limits hold (a speed through the corner would step them).
+            0.0
         };
         held.block.v_end_max = v_end_max;
         out.push(held.block);

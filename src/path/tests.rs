@@ -323,13 +323,13 @@ fn arc_junctions() {
     assert_continuous(&out);
     let lines: Vec<u32> = out.iter().map(|b| b.line).collect();
     assert_eq!(lines, [1, 2, 3, 5, 6, 8]);
-    // Line → tangent arc: eq. 10, v = sqrt(R/(δt·J)) = 1 m/s here, so the feed limits.
-    // v²/R ≤ ½·δt·j (eq. 10 in its dimensionally consistent form, half the per-period budget).
+    // Line → tangent arc: eq. 10, v²/R ≤ ½·δt·j (eq. 10 in its dimensionally consistent form, half the per-period budget).
     let eq10 = (0.5 * m.interpolation_period * 50.0 * r).sqrt();
     assert!((out[0].v_end_max - eq10.min(out[0].v_feed).min(out[1].v_feed)).abs() < 1e-12);
     assert!(out[0].v_end_max > 0.0);
-    // Arc end tangent is +Y, next line +X: 90° → seed-003 corner feed A·T.
-    assert!((out[1].v_end_max - 2.0e-3).abs() < 1e-15);
+    // Arc end tangent is +Y, next line +X: a sharp corner with no transition stops (the seed-003
+    // corner feed A·T is the acceleration_period mode's, tested below).
+    assert_eq!(out[1].v_end_max, 0.0);
     // Dwell and M0 stop.
     assert_eq!(out[2].v_end_max, 0.0);
     assert!(matches!(out[3].segment, Segment::Dwell { seconds, .. } if seconds == 0.5));
@@ -409,4 +409,32 @@ fn blend_speed_matches_eq54_on_gentle_corners() {
             "{deg}: {v} vs eq.54 {v_lim_j}"
         );
     }
+}
+
+#[test]
+fn sharp_arc_corner_uses_the_corner_feed_in_acceleration_period_mode() {
+    let m = Machine {
+        corner: CornerMode::AccelerationPeriod,
+        ..Machine::default()
+    };
+    let r = 10.0 * MM;
+    let mut b = PathBuilder::new(&m);
+    let mut out = Vec::new();
+    b.push(
+        &arc_block(1, [0.0, -r, 0.0], [r, 0.0, 0.0], [0.0; 3], false),
+        &mut out,
+    );
+    let next = Block {
+        line: 2,
+        from: [r, 0.0, 0.0],
+        motion: Motion::Linear {
+            to: [2.0 * r, 0.0, 0.0],
+        },
+        feed: FEED,
+        path_mode: blend_mode(None),
+    };
+    b.push(&next, &mut out);
+    b.finish(&mut out);
+    // Arc end tangent +Y, line +X: 90° → seed-003 corner feed F_c = A·T/(1 − cos 90°) = A·T.
+    assert!((out[0].v_end_max - 2.0e-3).abs() < 1e-15, "{}", out[0].v_end_max);
 }
