@@ -265,7 +265,7 @@ fn a_move() -> impl Strategy<Value = Move> {
         [-30.0..30.0f64, -30.0..30.0f64, -5.0..5.0f64].prop_map(Move::Line),
         (
             2.0..30.0f64,
-            0.0..6.28f64,
+            0.0..std::f64::consts::TAU,
             0.2..4.0f64,
             any::<bool>(),
             -3.0..3.0f64
