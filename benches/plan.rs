@@ -47,6 +47,18 @@ fn plan_program(text: &Arc<str>, machine: &Machine) -> usize {
     planned + queue.len()
 }
 
+/// The segments of the program (reader and path stages), built once.
+fn segments(text: &Arc<str>, machine: &Machine) -> Vec<cnc_motion::path::PathBlock> {
+    let mut reader = Reader::new(text.clone(), "bench.ngc", [0.0; 3]);
+    let mut builder = PathBuilder::new(machine);
+    let mut out = Vec::new();
+    while let Some(block) = reader.next_block().expect("valid program") {
+        builder.push(&block, &mut out);
+    }
+    builder.finish(&mut out);
+    out
+}
+
 fn bench(c: &mut Criterion) {
     let n = 100_000;
     let text: Arc<str> = Arc::from(micro_segments(n));
@@ -54,8 +66,32 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("plan");
     g.sample_size(10);
     g.throughput(Throughput::Elements(n as u64));
-    g.bench_function("micro_segments_100k", |b| {
+    // The look-ahead alone (backward and forward passes, one feed profile per segment).
+    let segs = segments(&text, &machine);
+    g.bench_function("lookahead_only_micro_segments_100k", |b| {
+        b.iter(|| {
+            let mut planner = Planner::new(machine.profile, machine.lookahead_blocks);
+            let mut queue: VecDeque<Planned> = VecDeque::new();
+            let mut planned = 0;
+            for s in &segs {
+                planner.push(*s, &mut queue);
+                planned += queue.len();
+                queue.clear();
+            }
+            planner.finish(&mut queue);
+            planned + queue.len()
+        })
+    });
+    // Reader, path (a quintic corner transition at every junction) and look-ahead.
+    g.bench_function("read_path_plan_micro_segments_100k", |b| {
         b.iter(|| plan_program(&text, &machine))
+    });
+    let exact = Machine {
+        corner: cnc_motion::config::CornerMode::ExactStop,
+        ..Machine::default()
+    };
+    g.bench_function("read_path_plan_exact_stop_100k", |b| {
+        b.iter(|| plan_program(&text, &exact))
     });
     g.finish();
 }

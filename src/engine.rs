@@ -18,7 +18,7 @@ use std::sync::Arc;
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
 const STATE_VERSION: u32 = 1;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
-const READ_AHEAD_PER_TICK: usize = 4;
+const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
 
 /// Runs one program on one machine.

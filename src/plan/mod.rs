@@ -58,6 +58,9 @@ pub struct Planner {
     forced_entry: Option<f64>,
 }
 
+/// Segments released per backward pass when the window is full.
+const EMIT_BATCH: usize = 16;
+
 /// Iterations of the bounded bisection (interval shrinks by 2⁻⁶⁰, below f64 resolution).
 const BISECTION_STEPS: usize = 60;
 
@@ -127,11 +130,14 @@ impl Planner {
             v_in_stop,
             v_feed,
         });
-        // A full window releases one segment per segment taken, so the work per block stays
-        // bounded (no burst of half a window in one interpolation tick).
+        // A full window releases a small batch: one backward pass serves EMIT_BATCH segments
+        // (the pass re-plans the deceleration zone at the window's end, tens of segments on
+        // micro-segment programs), and no tick pays for a large burst.
         if self.window.len() >= self.capacity {
             self.backward();
-            self.emit_front(out);
+            for _ in 0..EMIT_BATCH.min(self.capacity / 2) {
+                self.emit_front(out);
+            }
         }
     }
 
