@@ -195,3 +195,27 @@ def test_bad_program_error_at_initialization(cnc, cli, tmp_path, case):
         assert any(where in m_ and what in m_ for m_ in msgs), msgs
     finally:
         s.fmu.freeInstance()
+
+
+def test_simulate_fmu_defaults_equal_cli_run(fmus, cli, tmp_path):
+    """fmpy's simulate_fmu with the FMU's defaults runs the shipped default program to
+    program.finished, and every tick's command equals the CLI's `run` of the same program and
+    machine to 1e-12 m."""
+    from fmpy import simulate_fmu
+    names = [f"{a}.command.position" for a in fmusim.AXES] + ["program.finished"]
+    res = simulate_fmu(str(fmus[0]), output_interval=1e-3, output=names)
+    assert res["program.finished"][-1], "default stop time covers the default program"
+    csv = tmp_path / "ticks.csv"
+    out = subprocess.run([cli, "run", str(ROOT / "resources" / "default.ngc"), "--csv", str(csv)],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    ticks = np.genfromtxt(csv, delimiter=",", names=True)
+    n = len(ticks)
+    # Row k of the FMU result is at t = k·1 ms; CSV row k−1 is the tick at k·1 ms.
+    t = res["time"][1:n + 1]
+    assert np.allclose(t, ticks["time_s"], rtol=0, atol=1e-9)
+    for a in fmusim.AXES:
+        fmu = res[f"{a}.command.position"][1:n + 1]
+        np.testing.assert_allclose(fmu, ticks[f"{a}_mm"] * 1e-3, rtol=0, atol=1e-12, err_msg=a)
+    i_done = int(np.argmax(res["program.finished"]))
+    assert i_done == n, f"FMU finished at row {i_done}, CLI after {n} ticks"
