@@ -5,7 +5,7 @@
 //! the seed (t_v > t_a > t_j: J and A are reached; t_v ≤ t_a < t_j: neither is) and the critical
 //! distances s_cr1..s_cr4 fall out of choosing the peak acceleration below.
 
-use super::quintic::{largest_within, Shape};
+use super::quintic::{largest_within, Composed, Shape};
 use super::{BlockRequest, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
@@ -187,47 +187,35 @@ pub fn plan(req: &BlockRequest) -> Jerk15 {
     }
 }
 
+impl Jerk15 {
+    fn blocks(&self) -> Composed {
+        Composed {
+            v_in: self.v_in,
+            v_peak: self.v_peak,
+            v_end: self.v_end,
+            t_up: self.up.duration(),
+            t_cruise: self.t_cruise,
+            t_down: self.down.duration(),
+        }
+    }
+}
+
 impl FeedLaw for Jerk15 {
     fn duration(&self) -> f64 {
-        self.up.duration() + self.t_cruise + self.down.duration()
+        self.blocks().duration()
     }
     fn length(&self) -> f64 {
-        0.5 * (self.v_in + self.v_peak) * self.up.duration()
-            + self.v_peak * self.t_cruise
-            + 0.5 * (self.v_peak + self.v_end) * self.down.duration()
+        self.blocks().length()
     }
     fn v_end(&self) -> f64 {
         self.v_end
     }
     fn at(&self, t: f64) -> Kin {
-        let total = self.duration();
-        let t = t.clamp(0.0, total);
-        let t_end = t >= total;
-        let t_up = self.up.duration();
-        if t < t_up {
-            return self.up.at(self.v_in, t);
-        }
-        let s1 = 0.5 * (self.v_in + self.v_peak) * t_up;
-        let t = t - t_up;
-        if t < self.t_cruise {
-            return Kin {
-                s: s1 + self.v_peak * t,
-                v: self.v_peak,
-                a: 0.0,
-                j: 0.0,
-            };
-        }
-        // At the very end take the ramp's own duration, so that a = 0 exactly despite rounding of t.
-        let t_down = if t_end {
-            self.down.duration()
-        } else {
-            t - self.t_cruise
-        };
-        let k = self.down.at(self.v_peak, t_down);
-        Kin {
-            s: s1 + self.v_peak * self.t_cruise + k.s,
-            ..k
-        }
+        self.blocks().at(
+            t,
+            |tau| self.up.at(self.v_in, tau),
+            |tau| self.down.at(self.v_peak, tau),
+        )
     }
     fn phases(&self) -> Vec<f64> {
         let mut p = self.up.phases().to_vec();

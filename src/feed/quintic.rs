@@ -83,24 +83,72 @@ fn ramp_at(v1: f64, v2: f64, t_d: f64, t: f64) -> Kin {
     }
 }
 
+impl Quintic {
+    fn blocks(&self) -> Composed {
+        Composed {
+            v_in: self.v_in,
+            v_peak: self.v_peak,
+            v_end: self.v_end,
+            t_up: self.t_up,
+            t_cruise: self.t_cruise,
+            t_down: self.t_down,
+        }
+    }
+}
+
 impl FeedLaw for Quintic {
     fn duration(&self) -> f64 {
-        self.t_up + self.t_cruise + self.t_down
+        self.blocks().duration()
     }
     fn length(&self) -> f64 {
-        0.5 * (self.v_in + self.v_peak) * self.t_up
-            + self.v_peak * self.t_cruise
-            + 0.5 * (self.v_peak + self.v_end) * self.t_down
+        self.blocks().length()
     }
     fn v_end(&self) -> f64 {
         self.v_end
     }
     fn at(&self, t: f64) -> Kin {
+        self.blocks().at(
+            t,
+            |tau| ramp_at(self.v_in, self.v_peak, self.t_up, tau),
+            |tau| ramp_at(self.v_peak, self.v_end, self.t_down, tau),
+        )
+    }
+    fn phases(&self) -> Vec<f64> {
+        vec![self.t_up, self.t_cruise, self.t_down]
+    }
+}
+
+// ---- Bounded solvers and block composition shared by quintic, jerk15 and mixed57 ----
+
+/// A block as ramp (t_up, v_in → v_peak), cruise at v_peak (t_cruise), ramp (t_down, → v_end).
+/// Every ramp of these laws is point-symmetric, so it covers its mean speed times its duration.
+pub(super) struct Composed {
+    pub v_in: f64,
+    pub v_peak: f64,
+    pub v_end: f64,
+    pub t_up: f64,
+    pub t_cruise: f64,
+    pub t_down: f64,
+}
+
+impl Composed {
+    pub fn duration(&self) -> f64 {
+        self.t_up + self.t_cruise + self.t_down
+    }
+
+    pub fn length(&self) -> f64 {
+        0.5 * (self.v_in + self.v_peak) * self.t_up
+            + self.v_peak * self.t_cruise
+            + 0.5 * (self.v_peak + self.v_end) * self.t_down
+    }
+
+    /// State at t; `up(τ)` and `down(τ)` give a ramp's state τ after its own start (s from there).
+    pub fn at(&self, t: f64, up: impl Fn(f64) -> Kin, down: impl Fn(f64) -> Kin) -> Kin {
         let total = self.duration();
         let t = t.clamp(0.0, total);
         let t_end = t >= total;
         if t < self.t_up {
-            return ramp_at(self.v_in, self.v_peak, self.t_up, t);
+            return up(t);
         }
         let s1 = 0.5 * (self.v_in + self.v_peak) * self.t_up;
         let t = t - self.t_up;
@@ -118,18 +166,13 @@ impl FeedLaw for Quintic {
         } else {
             (t - self.t_cruise).min(self.t_down)
         };
-        let k = ramp_at(self.v_peak, self.v_end, self.t_down, t_down);
+        let k = down(t_down);
         Kin {
             s: s1 + self.v_peak * self.t_cruise + k.s,
             ..k
         }
     }
-    fn phases(&self) -> Vec<f64> {
-        vec![self.t_up, self.t_cruise, self.t_down]
-    }
 }
-
-// ---- Bounded solvers and block composition shared by quintic, jerk15 and mixed57 ----
 
 /// Iterations of every bisection: the bracket reaches adjacent floats long before.
 pub(super) const BISECTIONS: usize = 110;
