@@ -207,18 +207,17 @@ impl Engine {
             return;
         }
         self.hold_applied = false;
-        let v_start = if self.interp.idle() {
+        // Still slowing down when released: the ramp in the queue finishes first, and the rest of
+        // the path enters at the speed it ends with (or the speed now, if nothing is queued).
+        let v_now = if self.interp.idle() {
             0.0
         } else {
             self.interp.kin().v
         };
-        // Still slowing down when released: the ramp in the queue finishes first.
+        let v_entry = self.queue.back().map_or(v_now, |p| p.v_out);
         let mut blocks: Vec<PathBlock> = std::mem::take(&mut self.held);
-        blocks.extend(self.planner.restart(v_start));
-        let scale = self.feed_override.max(1e-3);
-        self.planner.set_feed_scale(scale);
-        let v_entry = self.queue.back().map_or(v_start, |p| p.v_out);
-        let _ = self.planner.restart(v_entry);
+        blocks.extend(self.planner.restart(v_entry));
+        self.planner.set_feed_scale(self.feed_override.max(1e-3));
         let mut out = std::mem::take(&mut self.queue);
         for b in blocks {
             self.planner.push(b, &mut out);
