@@ -480,7 +480,9 @@ impl SmoothBuilder {
             segment,
             v_feed: (self.chain_feed / sigma).max(0.0).min(limits.v_max),
             limits,
-            v_end_max,
+            // A C2 joint limits nothing beyond the chain's own v_max (kept finite: the state
+            // is serialised).
+            v_end_max: v_end_max.min(limits.v_max),
             constant_speed: false,
         });
     }
