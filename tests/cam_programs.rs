@@ -106,7 +106,7 @@ fn run(program: &Program, m: &Machine) -> Outcome {
         // Nearest programmed piece, searched forward from the last one (ticks move forward).
         let geo = &program.geometry;
         let (mut best, mut best_k) = (f64::INFINITY, cursor);
-        for k in cursor.saturating_sub(2)..(cursor + 400).min(geo.len()) {
+        for k in cursor.saturating_sub(16)..(cursor + 400).min(geo.len()) {
             let d = geo[k].distance(tick.p);
             if d < best {
                 (best, best_k) = (d, k);

@@ -142,7 +142,6 @@ fn run(prog: &Program, m: &Machine, max_time: f64, tolerance: Option<f64>) -> Op
         .map(|a| a.max_velocity * m.interpolation_period)
         .collect();
     let mut last = e.tick().p;
-    let mut cursor = 0usize;
     while !e.finished() {
         let t = *e.step().expect("no runtime error");
         for i in 0..3 {
@@ -155,19 +154,17 @@ fn run(prog: &Program, m: &Machine, max_time: f64, tolerance: Option<f64>) -> Op
         }
         last = t.p;
         if let Some(tol) = tolerance {
-            let geo = &prog.geometry;
-            let (mut best, mut best_k) = (f64::INFINITY, cursor);
-            for k in cursor.saturating_sub(2)..(cursor + 40).min(geo.len()) {
-                let d = geo[k].distance(t.p);
-                if d < best {
-                    (best, best_k) = (d, k);
-                }
-            }
-            cursor = best_k;
+            // Programs are short: the nearest of all programmed pieces.
+            let best = prog
+                .geometry
+                .iter()
+                .map(|g| g.distance(t.p))
+                .fold(f64::INFINITY, f64::min);
             assert!(
                 best <= tol * (1.0 + 1e-6) + 1e-12,
-                "tick {:?} is {best} m off the path",
-                t.p
+                "tick {:?} is {best} m off the path in: {}",
+                t.p,
+                prog.text.replace('\n', " | ")
             );
         }
         if t.t > max_time {

@@ -427,7 +427,12 @@ impl PathBuilder {
                         // a constant-speed transition needs a block after it that can stop.
                         let max_cut =
                             (TRANSITION_SHARE * held.programmed.min(next.programmed)).min(h.length());
-                        let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds);
+                        // The line after keeps at least (1 − 2·share) of its length; the
+                        // transition's speed is one that line can always stop from, so the
+                        // look-ahead's window-end stop never has to lower it later.
+                        let rest = (1.0 - 2.0 * TRANSITION_SHARE) * next.programmed;
+                        let v_stop = crate::feed::max_entry(m.profile, rest, 0.0, &next.block.limits);
+                        let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds.min(v_stop));
                         match trans {
                             Some((segment, v)) => {
                                 held.block.segment = Segment::Line(Line {

@@ -26,7 +26,7 @@ use super::{
     add, cross, curve_limits, dot, line_limits, norm, scale, sub, unit, Arc, Line, PathBlock, Segment, Shares,
 };
 use crate::config::Machine;
-use crate::feed::Limits;
+use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -551,11 +551,23 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
 /// Tangential shares tried for a chain (see `chain_limits`).
 const TANGENTIAL_SHARES: [f64; 5] = [0.005, 0.02, 0.05, 0.1, 0.25];
 
+/// Time of the 7-phase law from rest to rest over `length` within `limits`.
+fn rest_to_rest(length: f64, limits: &Limits) -> f64 {
+    let req = BlockRequest {
+        length,
+        v_in: 0.0,
+        v_out: 0.0,
+        v_feed: limits.v_max,
+        limits: *limits,
+    };
+    scurve7::plan(&req).duration()
+}
+
 /// Limits of a chain of `length` with derivative bounds `b`: of the tangential shares tried, the
-/// one whose limits give the shortest rest-to-rest estimate L/v + v/a + a/j — a long curve is
+/// one whose limits give the shortest rest-to-rest time over the chain — a long curve is
 /// fastest at the highest speed its curvature allows, a short one needs room to speed up.
 fn chain_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, length: f64, m: &Machine) -> Limits {
-    let time = |l: &Limits| length / l.v_max + l.v_max / l.a_max + l.a_max / l.j_max;
+    let time = |l: &Limits| rest_to_rest(length, l);
     TANGENTIAL_SHARES
         .iter()
         .map(|&tangential| {
