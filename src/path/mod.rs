@@ -495,7 +495,20 @@ impl PathBuilder {
         max_cut: f64,
         feeds: f64,
     ) -> Option<(Segment, f64)> {
-        let m = &self.machine;
+        // Passing a transition at one speed, the axes may use the transition jerk (seed 004
+        // Table 1), where the machine gives one.
+        let with_transition_jerk;
+        let m = match self.machine.max_transition_jerk {
+            Some(j) => {
+                let mut m = self.machine.clone();
+                for a in &mut m.axes {
+                    a.max_jerk = j;
+                }
+                with_transition_jerk = m;
+                &with_transition_jerk
+            }
+            None => &self.machine,
+        };
         if dot(t_in, t_out) < corner::REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
             return None;
         }
