@@ -327,3 +327,32 @@ fn arcs_meeting_with_small_kinks() {
         report(&format!("arcs with a {kink_deg}° kink"), &prog, &o, 3000.0);
     }
 }
+
+#[test]
+fn g64_q_merges_nearly_collinear_moves() {
+    // 200 points 0.1 mm apart along X, Y jittering by ±2 µm, ending on Y0: with Q 5 µm (the
+    // greedy merge sees lines to ±2 µm ends, so inner points up to 4 µm off) the run is one
+    // straight move, every tick on Y = 0; with Q 1 µm it is not.
+    let m = machine();
+    for (q, straight) in [(0.005, true), (0.001, false)] {
+        let mut text = format!("G21 G90 G17 G64 P0.01 Q{q}\nG1 F3000\n");
+        for k in 1..=200 {
+            let y = if k == 200 {
+                0.0
+            } else if k % 2 == 0 {
+                0.002
+            } else {
+                -0.002
+            };
+            writeln!(text, "X{:.4} Y{:.4}", 0.1 * k as f64, y).unwrap();
+        }
+        text.push_str("M30\n");
+        let mut e = Engine::new(Arc::from(text.as_str()), "q.ngc", &m).unwrap();
+        let mut worst_y: f64 = 0.0;
+        while !e.finished() {
+            worst_y = worst_y.max(e.step().unwrap().p[1].abs());
+        }
+        assert_eq!(worst_y < 1e-12, straight, "Q {q}: |y| up to {worst_y}");
+        assert!((e.tick().p[0] - 0.02).abs() < 1e-12);
+    }
+}

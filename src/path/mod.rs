@@ -22,6 +22,7 @@ mod chain;
 mod corner;
 mod hermite;
 mod line;
+mod merge;
 mod smooth;
 
 pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, plane_axes, Arc, Shares};
@@ -254,6 +255,7 @@ pub struct PathBuilder {
     machine: Machine,
     held: Option<Held>,
     smooth: SmoothBuilder,
+    merger: merge::Merger,
 }
 
 impl PathBuilder {
@@ -262,11 +264,19 @@ impl PathBuilder {
             machine: machine.clone(),
             held: None,
             smooth: SmoothBuilder::new(),
+            merger: merge::Merger::new(),
         }
     }
 
-    /// Take one block; push the segments that are now final onto `out`.
+    /// Take one block; push the segments that are now final onto `out`. Under G64 Q, nearly
+    /// collinear G1 moves are merged first (merge.rs).
     pub fn push(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
+        let mut merger = std::mem::take(&mut self.merger);
+        merger.push(block, |b| self.push_merged(b, out));
+        self.merger = merger;
+    }
+
+    fn push_merged(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
         let (segment, feed) = match block.motion {
             Motion::Rapid { to } => (
                 Segment::Line(Line {
@@ -366,6 +376,8 @@ impl PathBuilder {
 
     /// End of program: release the held segment, stopping at its end.
     pub fn finish(&mut self, out: &mut Vec<PathBlock>) {
+        let mut merger = std::mem::take(&mut self.merger);
+        merger.flush(&mut |b: &Block| self.push_merged(b, out));
         self.release(0.0, out);
         self.smooth.stop(&self.machine, out);
     }
