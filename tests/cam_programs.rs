@@ -21,15 +21,16 @@ const V: f64 = 0.25;
 const TOL: f64 = 0.01 * MM;
 
 fn machine() -> Machine {
-    let mut m = Machine::default();
-    m.axes = [AxisLimits {
-        max_velocity: V,
-        max_acceleration: A,
-        max_jerk: J,
-    }; 3];
-    m.max_feed = V;
-    m.path_tolerance = TOL;
-    m
+    Machine {
+        axes: [AxisLimits {
+            max_velocity: V,
+            max_acceleration: A,
+            max_jerk: J,
+        }; 3],
+        max_feed: V,
+        path_tolerance: TOL,
+        ..Machine::default()
+    }
 }
 
 /// A program being written, with its programmed geometry (SI) as the reader will see it.
@@ -106,8 +107,9 @@ fn run(program: &Program, m: &Machine) -> Outcome {
         // Nearest programmed piece, searched forward from the last one (ticks move forward).
         let geo = &program.geometry;
         let (mut best, mut best_k) = (f64::INFINITY, cursor);
-        for k in cursor.saturating_sub(16)..(cursor + 400).min(geo.len()) {
-            let d = geo[k].distance(tick.p);
+        let from = cursor.saturating_sub(16);
+        for (k, g) in geo.iter().enumerate().take(cursor + 400).skip(from) {
+            let d = g.distance(tick.p);
             if d < best {
                 (best, best_k) = (d, k);
             }
@@ -304,12 +306,12 @@ fn line_arc_petals_with_non_tangent_joins() {
 #[test]
 fn arcs_meeting_with_small_kinks() {
     let m = machine();
-    for kink_deg in [0.002, 0.02, 0.1, 0.5] {
+    for kink_deg in [0.002f64, 0.02, 0.1, 0.5] {
         let mut prog = Program::new(3000.0);
         // Quarter arc R 10 from the origin, then an arc of R 15 whose start tangent is turned
         // by the kink, then a line out.
         prog.arc([10.0, 10.0, 0.0], [10.0, 0.0], true);
-        let kink = (kink_deg as f64).to_radians();
+        let kink = kink_deg.to_radians();
         // Tangent at the end of the first arc is +x; the second arc starts along (cos k, sin k)
         // and turns clockwise: its centre is 15 mm to the right of that tangent.
         let t = [kink.cos(), kink.sin()];
