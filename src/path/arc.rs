@@ -166,6 +166,38 @@ impl Arc {
     }
 }
 
+impl Arc {
+    /// Per-axis bounds of |p'|, |p''|, |p'''| on stretches of at most `CELL_ANGLE` of the sweep:
+    /// each component is a sinusoid of φ of amplitude R·|(e1_i, e2_i)| (over k, k², k³), so on
+    /// [φc − δ, φc + δ] it stays within its value at φc plus the amplitude times δ.
+    pub fn cells(&self, mut take: impl FnMut([Vec3; 3])) {
+        let k = self.speed();
+        let h = self.rise / self.sweep;
+        let r = self.radius;
+        let n = ((self.sweep / CELL_ANGLE).ceil() as usize).clamp(1, MAX_CELLS);
+        let delta = 0.5 * self.sweep / n as f64;
+        for c in 0..n {
+            let phi = (2 * c + 1) as f64 * delta;
+            let (sn, cs) = phi.sin_cos();
+            let mut b = [[0.0; 3]; 3];
+            for i in 0..3 {
+                let amp = self.e1[i].hypot(self.e2[i]);
+                let e_t = (-sn * self.e1[i] + cs * self.e2[i]).abs();
+                let e_r = (cs * self.e1[i] + sn * self.e2[i]).abs();
+                let grow = amp * delta;
+                b[0][i] = ((r * (e_t + grow).min(amp) + (h * self.axis[i]).abs()) / k).min(1.0);
+                b[1][i] = r * (e_r + grow).min(amp) / (k * k);
+                b[2][i] = r * (e_t + grow).min(amp) / (k * k * k);
+            }
+            take(b);
+        }
+    }
+}
+
+/// Largest stretch of an arc in one cell (rad), and most cells per arc.
+const CELL_ANGLE: f64 = std::f64::consts::PI / 16.0;
+const MAX_CELLS: usize = 256;
+
 /// Seed 003: the chord of one interpolation period T at speed v deviates from a circle of radius R
 /// by δ when v·T = 2·sqrt(δ(2R − δ)), so v ≤ 2·sqrt(δ(2R − δ))/T.
 pub fn chord_error_speed(radius: f64, chord_tolerance: f64, period: f64) -> f64 {
@@ -221,13 +253,9 @@ pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
         a_cap: 0.5,
         tangential: TANGENTIAL_SHARE,
     };
-    curve_limits(
-        &arc.derivative_bounds(),
-        arc.curvature_radius(),
-        f64::INFINITY,
-        machine,
-        shares,
-    )
+    let mut cells = Vec::new();
+    arc.cells(|c| cells.push(c));
+    curve_limits(&cells, arc.curvature_radius(), f64::INFINITY, machine, shares)
 }
 
 /// How `curve_limits` splits the axis budgets: A_c at most `a_cap` of its free value, and the
@@ -242,7 +270,8 @@ pub struct Shares {
 /// `b` (|p'|, |p''|, |p'''|), `rho` its smallest radius of curvature (chord error), as described
 /// for arcs above, the speed never above `v_cap`. The largest v_max whose budget keeps the
 /// tangential shares is found by bisection (the budget shrinks as v grows).
-pub fn curve_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, machine: &Machine, shares: Shares) -> Limits {
+pub fn curve_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine, shares: Shares) -> Limits {
+    let b = &max_bounds(cells);
     let v0 = constant_speed_limit(b, machine)
         .min(chord_error_speed(
             rho,
@@ -265,24 +294,31 @@ pub fn curve_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, machine: &Machine, shar
         j_free = j_free.min(j);
     }
     let (a_min, j_min) = (shares.tangential * a_free, shares.tangential * j_free);
-    // (A_c, J_c) at speed v, or None when either falls below its share.
+    // (A_c, J_c) at speed v, or None when either falls below its share. Each cell bounds p',
+    // p'' and p''' at the same points, so the centripetal and tangential parts add per cell.
     let budget = |v: f64| -> Option<(f64, f64)> {
         let mut a_c = a_share * a_free;
-        for (i, ax) in machine.axes.iter().enumerate() {
-            let [d1, d2, d3] = [b[0][i], b[1][i], b[2][i]];
-            if d1 > 1e-12 {
-                a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
-                // Leave the jerk its share: d3·v³ + 3·d2·v·a + d1·j_min ≤ J_i.
-                if d2 * v > 1e-12 {
-                    a_c = a_c.min((ax.max_jerk - d3 * v * v * v - d1 * j_min) / (3.0 * d2 * v));
+        for cell in cells {
+            for (i, ax) in machine.axes.iter().enumerate() {
+                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
+                if d1 > 1e-12 {
+                    a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
+                    // Leave the jerk its share: d3·v³ + 3·d2·v·a + d1·j_min ≤ J_i.
+                    if d2 * v > 1e-12 {
+                        a_c = a_c.min((ax.max_jerk - d3 * v * v * v - d1 * j_min) / (3.0 * d2 * v));
+                    }
+                } else if d2 * v * v > ax.max_acceleration || d3 * v * v * v > ax.max_jerk {
+                    return None;
                 }
             }
         }
         let mut j_c = j_free;
-        for (i, ax) in machine.axes.iter().enumerate() {
-            let [d1, d2, d3] = [b[0][i], b[1][i], b[2][i]];
-            if d1 > 1e-12 {
-                j_c = j_c.min((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a_c) / d1);
+        for cell in cells {
+            for (i, ax) in machine.axes.iter().enumerate() {
+                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
+                if d1 > 1e-12 {
+                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a_c) / d1);
+                }
             }
         }
         (a_c >= a_min && j_c >= j_min).then_some((a_c, j_c))
@@ -308,6 +344,19 @@ pub fn curve_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, machine: &Machine, shar
         j_max: j_c,
         snap_max: machine.max_snap,
     }
+}
+
+/// Largest per-axis bounds over the cells.
+pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
+    let mut b = [[0.0f64; 3]; 3];
+    for cell in cells {
+        for (acc, new) in b.iter_mut().zip(cell) {
+            for i in 0..3 {
+                acc[i] = acc[i].max(new[i]);
+            }
+        }
+    }
+    b
 }
 
 /// Steps of the v_max bisection (the interval shrinks by 2^-60).

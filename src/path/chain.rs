@@ -45,6 +45,14 @@ impl Curve {
             _ => 1.0,
         }
     }
+    /// The same bounds on stretches of the curve (cells), each holding at the same points.
+    pub fn cells(&self, mut take: impl FnMut([Vec3; 3])) {
+        match self {
+            Curve::Line(_) => take(self.derivative_bounds()),
+            Curve::Arc(a) => a.cells(take),
+            Curve::Hermite(h) => h.cells(take),
+        }
+    }
     /// Guaranteed per-axis bounds of |p'|, |p''|, |p'''| over the whole curve.
     pub fn derivative_bounds(&self) -> [Vec3; 3] {
         match self {

@@ -109,14 +109,28 @@ impl Hermite {
         }
     }
 
-    /// Guaranteed bounds per axis of |p'|, |p''|, |p'''| over [0, λ]: on each sub-interval
-    /// [m − r, m + r] the Taylor expansion of a polynomial is exact, so
-    /// |q^(n)(m + t)| ≤ Σ_k |q^(n+k)(m)|·r^k/k! (no sampling; rounding is below 1e-15 relative).
+    /// Guaranteed bounds per axis of |p'|, |p''|, |p'''| over [0, λ] (the largest of `cells`).
     pub fn derivative_bounds(&self) -> [Vec3; 3] {
         let mut b = [[0.0f64; 3]; 3];
+        self.cells(|cell| {
+            for (acc, new) in b.iter_mut().zip(cell) {
+                for i in 0..3 {
+                    acc[i] = acc[i].max(new[i]);
+                }
+            }
+        });
+        b
+    }
+
+    /// The same bounds on each of `BOUND_PIECES` sub-intervals [m − r, m + r]: the Taylor
+    /// expansion of a polynomial is exact, so |q^(n)(m + t)| ≤ Σ_k |q^(n+k)(m)|·r^k/k! (no
+    /// sampling; rounding is below 1e-15 relative). Per sub-interval, the bounds of p' and p''
+    /// hold at the same points, which `curve_limits` uses.
+    pub fn cells(&self, mut take: impl FnMut([Vec3; 3])) {
         let r = 0.5 * self.lambda / BOUND_PIECES as f64;
         for piece in 0..BOUND_PIECES {
             let m = (2 * piece + 1) as f64 * r;
+            let mut b = [[0.0f64; 3]; 3];
             for i in 0..3 {
                 // q^(n)(m) for n = 1..5.
                 let c: [f64; 5] = std::array::from_fn(|k| self.c[k][i]);
@@ -135,11 +149,11 @@ impl Hermite {
                         rk *= r / (k + 1) as f64;
                     }
                     // Relative guard for the rounding of the sums above.
-                    bound[i] = bound[i].max(sum * (1.0 + 1e-12));
+                    bound[i] = sum * (1.0 + 1e-12);
                 }
             }
+            take(b);
         }
-        b
     }
 
     /// Guaranteed bound of the parameter speed |p'| over [0, λ] (Taylor, as above, with vector

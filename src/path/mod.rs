@@ -25,7 +25,9 @@ mod line;
 mod merge;
 mod smooth;
 
-pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, plane_axes, Arc, Shares};
+pub use arc::{
+    arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, plane_axes, Arc, Shares,
+};
 pub use blend::Blend;
 pub use chain::{Chain, Curve, Piece};
 pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed};

@@ -23,7 +23,8 @@ use super::chain::{Chain, Curve, Piece};
 use super::corner::REVERSAL_COS;
 use super::hermite::{Hermite, Jet};
 use super::{
-    add, cross, curve_limits, dot, line_limits, norm, scale, sub, unit, Arc, Line, PathBlock, Segment, Shares,
+    add, cross, curve_limits, dot, line_limits, max_bounds, norm, scale, sub, unit, Arc, Line, PathBlock,
+    Segment, Shares,
 };
 use crate::config::Machine;
 use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
@@ -185,9 +186,9 @@ pub struct SmoothBuilder {
     run_jet: VertexJet,
     /// Stage 2: the span waiting for its junction with the next.
     held: Option<Span>,
-    /// Stage 3: the chain being filled, its merged bounds, feed and speed class.
+    /// Stage 3: the chain being filled, its pieces' bound cells, feed and speed class.
     chain: Chain,
-    bounds: [Vec3; 3],
+    cells: Vec<[Vec3; 3]>,
     chain_feed: f64,
     chain_class: f64,
     chain_straight: bool,
@@ -202,7 +203,7 @@ impl SmoothBuilder {
             run_jet: None,
             held: None,
             chain: Chain::default(),
-            bounds: [[0.0; 3]; 3],
+            cells: Vec::new(),
             chain_feed: 0.0,
             chain_class: 0.0,
             chain_straight: true,
@@ -408,7 +409,9 @@ impl SmoothBuilder {
     /// Stage 3: add a piece to the chain; `stop` after it.
     fn piece(&mut self, piece: Piece, feed: f64, stop: bool, m: &Machine, out: &mut Vec<PathBlock>) {
         if piece.length() > MIN_PIECE {
-            let b = piece.curve.derivative_bounds();
+            let mut cells = Vec::new();
+            piece.curve.cells(|c| cells.push(c));
+            let b = max_bounds(&cells);
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
             // The speed class is the piece's own v_max with its tangential budget, so a chain
@@ -418,7 +421,7 @@ impl SmoothBuilder {
             } else {
                 let k = norm(b[1]);
                 let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-                chain_limits(&b, rho, feed / sigma, piece.length(), m).v_max
+                chain_limits(&cells, rho, feed / sigma, piece.length(), m).v_max
             };
             let fits = !self.chain.is_empty()
                 && feed == self.chain_feed
@@ -431,16 +434,12 @@ impl SmoothBuilder {
                 self.chain_feed = feed;
                 self.chain_class = class;
                 self.chain_straight = straight;
-                self.bounds = [[0.0; 3]; 3];
+                self.cells.clear();
                 self.chain_sigma = 1.0;
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
-            for (acc, new) in self.bounds.iter_mut().zip(b) {
-                for i in 0..3 {
-                    acc[i] = acc[i].max(new[i]);
-                }
-            }
+            self.cells.extend(cells);
             self.chain.push(piece);
         }
         if stop {
@@ -463,11 +462,10 @@ impl SmoothBuilder {
                 (Segment::Line(line), line_limits(line.direction(), m), 1.0)
             }
             _ => {
-                let b = &self.bounds;
-                let k = norm(b[1]);
+                let k = norm(max_bounds(&self.cells)[1]);
                 let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
                 let v_cap = self.chain_feed / self.chain_sigma;
-                let limits = chain_limits(b, rho, v_cap, chain.length(), m);
+                let limits = chain_limits(&self.cells, rho, v_cap, chain.length(), m);
                 (Segment::Chain(chain), limits, self.chain_sigma)
             }
         };
@@ -563,10 +561,10 @@ fn rest_to_rest(length: f64, limits: &Limits) -> f64 {
     scurve7::plan(&req).duration()
 }
 
-/// Limits of a chain of `length` with derivative bounds `b`: of the tangential shares tried, the
+/// Limits of a chain of `length` with derivative bound cells `cells`: of the tangential shares tried, the
 /// one whose limits give the shortest rest-to-rest time over the chain — a long curve is
 /// fastest at the highest speed its curvature allows, a short one needs room to speed up.
-fn chain_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, length: f64, m: &Machine) -> Limits {
+fn chain_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, length: f64, m: &Machine) -> Limits {
     let time = |l: &Limits| rest_to_rest(length, l);
     TANGENTIAL_SHARES
         .iter()
@@ -575,7 +573,7 @@ fn chain_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, length: f64, m: &Machine) -
                 a_cap: 1.0,
                 tangential,
             };
-            curve_limits(b, rho, v_cap, m, shares)
+            curve_limits(cells, rho, v_cap, m, shares)
         })
         .min_by(|x, y| time(x).total_cmp(&time(y)))
         .expect("shares are tried")
@@ -585,10 +583,11 @@ fn chain_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, length: f64, m: &Machine) -
 /// allows so little speed that its time at that speed exceeds the rest-to-rest time over its
 /// length with the axis jerk alone (four phases of T_j, L = 2·J·T_j³).
 fn faster_than_a_stop(h: &Hermite, m: &Machine) -> bool {
-    let b = h.derivative_bounds();
-    let k = norm(b[1]);
+    let mut cells = Vec::new();
+    h.cells(|c| cells.push(c));
+    let k = norm(max_bounds(&cells)[1]);
     let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-    let v = chain_limits(&b, rho, m.max_feed, h.length(), m).v_max;
+    let v = chain_limits(&cells, rho, m.max_feed, h.length(), m).v_max;
     let j = m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min);
     let t_stop = 4.0 * (h.length() / (2.0 * j)).cbrt();
     h.length() < v * t_stop
