@@ -281,6 +281,7 @@ mod tests {
                 limits,
                 v_end_max: v_out,
                 constant_speed: false,
+                before_transition: false,
             },
             v_in,
             v_out,

@@ -232,6 +232,9 @@ pub struct PathBlock {
     pub v_end_max: f64,
     /// Traversed at one speed: v_in = v_out (corner transitions).
     pub constant_speed: bool,
+    /// A constant-speed transition follows, entered at exactly `v_end_max` (which the block
+    /// after that transition can always leave: see `PathBuilder::corner`).
+    pub before_transition: bool,
 }
 
 /// Moves shorter than this (m) are dropped.
@@ -317,6 +320,7 @@ impl PathBuilder {
                     limits: self.rest_limits(),
                     v_end_max: 0.0,
                     constant_speed: false,
+                    before_transition: false,
                 });
                 return;
             }
@@ -366,6 +370,7 @@ impl PathBuilder {
                 limits,
                 v_end_max: 0.0,
                 constant_speed: false,
+                before_transition: false,
             },
             programmed: length,
             mode: block.path_mode,
@@ -444,8 +449,10 @@ impl PathBuilder {
                         // The line after keeps at least (1 − 2·share) of its length; the
                         // transition's speed is one that line can always stop from, so the
                         // look-ahead's window-end stop never has to lower it later.
+                        // Slowing from v to any x < v takes (v + x)/2·T(v − x) ≤ v·T(v) =
+                        // 2·D(v, 0): a speed that stops in half the rest reaches every lower one.
                         let rest = (1.0 - 2.0 * TRANSITION_SHARE) * next.programmed;
-                        let v_stop = crate::feed::max_entry(m.profile, rest, 0.0, &next.block.limits);
+                        let v_stop = crate::feed::max_entry(m.profile, 0.5 * rest, 0.0, &next.block.limits);
                         let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds.min(v_stop));
                         match trans {
                             Some((segment, v)) => {
@@ -458,6 +465,7 @@ impl PathBuilder {
                                     end: n.end,
                                 });
                                 held.block.v_end_max = v;
+                                held.block.before_transition = true;
                                 let limits = Limits {
                                     v_max: v,
                                     a_max: held.block.limits.a_max.min(next.block.limits.a_max),
@@ -475,6 +483,7 @@ impl PathBuilder {
                                     limits,
                                     v_end_max: v,
                                     constant_speed: true,
+                                    before_transition: false,
                                 });
                                 self.held = Some(next);
                                 return;
@@ -537,7 +546,17 @@ impl PathBuilder {
             (Segment::Blend(b), v)
         };
         let v = v.min(feeds);
-        (v > 0.0 && v.is_finite()).then_some((segment, v))
+        // Where passing at v is slower than a stop (rest to rest over the transition with the
+        // axis jerk alone: four phases of T_j, L = 2·J·T_j³), stop instead.
+        let j = self
+            .machine
+            .axes
+            .iter()
+            .map(|a| a.max_jerk)
+            .fold(f64::INFINITY, f64::min);
+        let length = segment.length();
+        let slower_than_a_stop = length >= v * 4.0 * (length / (2.0 * j)).cbrt();
+        (v > 0.0 && v.is_finite() && !slower_than_a_stop).then_some((segment, v))
     }
 }
 

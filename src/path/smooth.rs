@@ -478,6 +478,7 @@ impl SmoothBuilder {
             // is serialised).
             v_end_max: v_end_max.min(limits.v_max),
             constant_speed: false,
+            before_transition: false,
         });
     }
 }

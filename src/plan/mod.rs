@@ -175,9 +175,17 @@ impl Planner {
         // A stop at a block end is only a way out when the next block can start from rest: a
         // constant-speed transition cannot (it would be traversed at zero speed, forever).
         let mut next_can_start_at_rest = true;
+        let last = self.window.len().saturating_sub(1);
         for i in (0..self.window.len()).rev() {
             let e = &self.window[i];
-            let v_exit = v_next.min(e.block.v_end_max);
+            // Before a transition the exit is its speed, even at the window's end (the
+            // transition will accept exactly that), so the limit never falls later.
+            let v_exit = if i == last && e.block.before_transition {
+                next_can_start_at_rest = false;
+                e.block.v_end_max
+            } else {
+                v_next.min(e.block.v_end_max)
+            };
             let lim = self.entry_limit(e, v_exit, next_can_start_at_rest);
             next_can_start_at_rest = !e.block.constant_speed;
             let e = &mut self.window[i];
@@ -287,6 +295,7 @@ mod tests {
             limits,
             v_end_max,
             constant_speed: false,
+            before_transition: false,
         }
     }
 
