@@ -22,7 +22,7 @@ from fmpy import read_model_description  # noqa: E402
 from fmusim import AXES, CNC_FMU, SSP, STRUCTURE_FMU  # noqa: E402
 
 CNC_RECORDED = [f"{a}.command.{q}" for a in AXES for q in ("position", "velocity", "acceleration", "jerk")] + [
-    "path.feed", "path.distance", "program.line", "program.finished"] + [
+    "path.feed", "path.distance", "status.line", "status.finished"] + [
     f"{a}.{q}" for a in AXES for q in ("position", "followingError")]
 STRUCTURE_RECORDED = [f"{a}.{q}" for a in AXES for q in ("deflection", "acceleration")]
 

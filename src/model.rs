@@ -655,7 +655,7 @@ pub fn variables() -> Vec<Variable> {
         |c, _| c.tick().distance,
     );
     v.push(Variable {
-        name: "program.line".into(),
+        name: "status.line".into(),
         value_reference: 0,
         kind: Kind::Integer,
         causality: Causality::Output,
@@ -667,7 +667,7 @@ pub fn variables() -> Vec<Variable> {
         access: Access::Integer(|c, _| c.tick().line as i32, None),
     });
     v.push(Variable {
-        name: "program.finished".into(),
+        name: "status.finished".into(),
         value_reference: 0,
         kind: Kind::Boolean,
         causality: Causality::Output,
