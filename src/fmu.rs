@@ -2,8 +2,8 @@
 
 use crate::config::Machine;
 use crate::engine::Engine;
-use crate::model::{self, Access, Causality, CncMotion, Kind, Variability, ENUMERATIONS};
-use fmi2::{DisplayUnit, EnumerationType, ModelInfo, UnitDefinition, Value, VariableInfo};
+use crate::model::{self, CncMotion, Slot, ENUMERATIONS};
+use fmi2::{EnumerationType, ModelInfo, Value, VariableInfo};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
@@ -11,58 +11,16 @@ use std::sync::{Arc, OnceLock};
 /// The default program shipped in the FMU's resources (and used by `make demo`).
 pub const DEFAULT_PROGRAM: &str = include_str!("../resources/default.ngc");
 
-/// Version of the serialized model state.
-const STATE_VERSION: u32 = 1;
+/// Version of the serialized model state (bincode of [`SavedModel`]).
+const STATE_VERSION: u32 = 2;
 
 /// The model as the FMI layer sees it.
 #[derive(Clone, Debug)]
 pub struct CncMotionFmu(pub CncMotion);
 
-fn table() -> &'static [model::Variable] {
-    static TABLE: OnceLock<Vec<model::Variable>> = OnceLock::new();
-    TABLE.get_or_init(model::variables)
-}
-
-/// SI units used by the table, with their base-unit exponents (kg, m, s, A, K, mol, cd, rad) and
-/// display units.
-fn units() -> Vec<UnitDefinition> {
-    let d = |name: &str, factor: f64| DisplayUnit {
-        name: name.into(),
-        factor,
-        offset: 0.0,
-    };
-    let u = |name: &str, base: [i32; 8], display: Vec<DisplayUnit>| UnitDefinition {
-        name: name.into(),
-        base,
-        display,
-    };
-    vec![
-        u("s", [0, 0, 1, 0, 0, 0, 0, 0], vec![d("ms", 1e3)]),
-        u("m", [0, 1, 0, 0, 0, 0, 0, 0], vec![d("mm", 1e3)]),
-        u(
-            "m/s",
-            [0, 1, -1, 0, 0, 0, 0, 0],
-            vec![d("mm/min", 6e4), d("mm/s", 1e3)],
-        ),
-        u("m/s2", [0, 1, -2, 0, 0, 0, 0, 0], vec![d("mm/s2", 1e3)]),
-        u("m/s3", [0, 1, -3, 0, 0, 0, 0, 0], vec![d("mm/s3", 1e3)]),
-        u("m/s4", [0, 1, -4, 0, 0, 0, 0, 0], vec![d("mm/s4", 1e3)]),
-        u("N", [1, 1, -2, 0, 0, 0, 0, 0], vec![]),
-        u("N.m", [1, 2, -2, 0, 0, 0, 0, 0], vec![]),
-        u("1", [0, 0, 0, 0, 0, 0, 0, 0], vec![]),
-        u("kg", [1, 0, 0, 0, 0, 0, 0, 0], vec![]),
-        u("kg.m2", [1, 2, 0, 0, 0, 0, 0, 0], vec![]),
-        u("1/s", [0, 0, -1, 0, 0, 0, 0, 0], vec![]),
-        u("N/m", [1, 0, -2, 0, 0, 0, 0, 0], vec![]),
-        u("N.s/m", [1, 0, -1, 0, 0, 0, 0, 0], vec![]),
-        u("Hz", [0, 0, -1, 0, 0, 0, 0, 0], vec![]),
-        u(
-            "rad/s",
-            [0, 0, -1, 0, 0, 0, 0, 1],
-            vec![d("rpm", 60.0 / (2.0 * std::f64::consts::PI))],
-        ),
-        u("N.m.s/rad", [1, 2, -1, 0, 0, 0, 0, -1], vec![]),
-    ]
+fn table() -> &'static [(VariableInfo, Slot)] {
+    static TABLE: OnceLock<Vec<(VariableInfo, Slot)>> = OnceLock::new();
+    TABLE.get_or_init(model::rows)
 }
 
 /// Time the default program takes on the default machine, rounded up to a whole second plus one.
@@ -83,56 +41,24 @@ impl fmi2::Model for CncMotionFmu {
     fn info() -> &'static ModelInfo {
         static INFO: OnceLock<ModelInfo> = OnceLock::new();
         INFO.get_or_init(|| {
-            let variables: Vec<VariableInfo> = table()
-                .iter()
-                .map(|v| VariableInfo {
-                    name: v.name.clone(),
-                    value_reference: v.value_reference,
-                    kind: match v.kind {
-                        Kind::Real => fmi2::Type::Real,
-                        Kind::Integer => fmi2::Type::Integer,
-                        Kind::Boolean => fmi2::Type::Boolean,
-                        Kind::String => fmi2::Type::String,
-                        Kind::Enumeration(e) => fmi2::Type::Enumeration(e),
-                    },
-                    causality: match v.causality {
-                        Causality::Parameter => fmi2::Causality::Parameter,
-                        Causality::Input => fmi2::Causality::Input,
-                        Causality::Output => fmi2::Causality::Output,
-                        Causality::Independent => fmi2::Causality::Independent,
-                    },
-                    variability: match v.variability {
-                        Variability::Fixed => fmi2::Variability::Fixed,
-                        Variability::Tunable => fmi2::Variability::Tunable,
-                        Variability::Discrete => fmi2::Variability::Discrete,
-                        Variability::Continuous => fmi2::Variability::Continuous,
-                    },
-                    unit: v.unit.map(str::to_string),
-                    display_unit: v.display_unit.map(str::to_string),
-                    description: v.description.clone(),
-                })
-                .collect();
-            ModelInfo {
-                model_name: model::MODEL_NAME.into(),
-                model_identifier: model::MODEL_NAME.into(),
-                guid: fmi2::guid_of(&variables),
-                description: "CNC motion controller: G-code to jerk-limited axis motion through servo drives"
-                    .into(),
-                version: env!("CARGO_PKG_VERSION").into(),
-                variables,
-                enumerations: ENUMERATIONS
+            let variables = table().iter().map(|(v, _)| v.clone()).collect();
+            let description =
+                "CNC motion controller: G-code to jerk-limited axis motion through servo drives";
+            let enumerations = ENUMERATIONS.iter().map(|(name, items)| EnumerationType {
+                name: name.to_string(),
+                items: items
                     .iter()
-                    .map(|(name, items)| EnumerationType {
-                        name: name.to_string(),
-                        items: items
-                            .iter()
-                            .map(|(n, d)| (n.to_string(), d.to_string()))
-                            .collect(),
-                    })
+                    .map(|(n, d)| (n.to_string(), d.to_string()))
                     .collect(),
-                units: units(),
-                log_categories: Vec::new(),
+            });
+            ModelInfo {
+                version: env!("CARGO_PKG_VERSION").into(),
+                author: "cnc-motion authors".into(),
+                copyright: "Copyright (c) 2026 the cnc-motion authors".into(),
+                license: env!("CARGO_PKG_LICENSE").into(),
+                enumerations: enumerations.collect(),
                 default_experiment: (0.0, default_stop_time(), 1e-6, 0.001),
+                ..ModelInfo::new(model::MODEL_NAME, description, variables)
             }
         })
     }
@@ -145,24 +71,11 @@ impl fmi2::Model for CncMotionFmu {
     }
 
     fn get(&self, index: usize) -> Value {
-        let v = &table()[index];
-        match v.access {
-            Access::Real(get, _) => Value::Real(get(&self.0, v.axis)),
-            Access::Integer(get, _) => Value::Integer(get(&self.0, v.axis)),
-            Access::Boolean(get, _) => Value::Boolean(get(&self.0, v.axis)),
-            Access::String(get, _) => Value::String(get(&self.0, v.axis)),
-        }
+        self.0.get(table()[index].1)
     }
 
     fn set(&mut self, index: usize, value: Value) -> Result<(), String> {
-        let v = &table()[index];
-        match (v.access, value) {
-            (Access::Real(_, Some(set)), Value::Real(x)) => set(&mut self.0, v.axis, x),
-            (Access::Integer(_, Some(set)), Value::Integer(x)) => set(&mut self.0, v.axis, x),
-            (Access::Boolean(_, Some(set)), Value::Boolean(x)) => set(&mut self.0, v.axis, x),
-            (Access::String(_, Some(set)), Value::String(x)) => set(&mut self.0, v.axis, &x),
-            _ => Err(format!("'{}' cannot be set", v.name)),
-        }
+        self.0.set(table()[index].1, value)
     }
 
     fn exit_initialization(&mut self) -> Result<(), String> {
@@ -180,6 +93,7 @@ impl fmi2::Model for CncMotionFmu {
             program: m.program.clone(),
             program_file: m.program_file.clone(),
             machine: m.machine.clone(),
+            indices: (m.profile_index, m.corner_index),
             servo_enabled: m.servo_enabled,
             feed_override: m.feed_override,
             feed_hold: m.feed_hold,
@@ -189,11 +103,11 @@ impl fmi2::Model for CncMotionFmu {
                 .as_ref()
                 .map(|e| (e.program().to_string(), e.save_state())),
         };
-        serde_json::to_vec(&state).unwrap_or_default()
+        bincode::serialize(&state).unwrap_or_default()
     }
 
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String> {
-        let s: SavedModel = serde_json::from_slice(bytes).map_err(|e| format!("model state: {e}"))?;
+        let s: SavedModel = bincode::deserialize(bytes).map_err(|e| format!("model state: {e}"))?;
         if s.version != STATE_VERSION {
             return Err(format!(
                 "model state version {}, expected {STATE_VERSION}",
@@ -213,6 +127,8 @@ impl fmi2::Model for CncMotionFmu {
             program: s.program,
             program_file: s.program_file,
             machine: s.machine,
+            profile_index: s.indices.0,
+            corner_index: s.indices.1,
             servo_enabled: s.servo_enabled,
             feed_override: s.feed_override,
             feed_hold: s.feed_hold,
@@ -230,6 +146,8 @@ struct SavedModel {
     program: String,
     program_file: String,
     machine: Machine,
+    /// machine.profileIndex, machine.cornerIndex.
+    indices: (i32, i32),
     servo_enabled: bool,
     feed_override: f64,
     feed_hold: bool,

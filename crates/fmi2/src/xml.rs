@@ -69,23 +69,26 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))
         .expect("writing to memory");
-    start(
-        &mut w,
-        "fmiModelDescription",
-        &[
-            ("fmiVersion", "2.0".into()),
-            ("modelName", info.model_name.clone()),
-            ("guid", info.guid.clone()),
-            ("description", info.description.clone()),
-            ("version", info.version.clone()),
-            (
-                "generationTool",
-                format!("fmi2 layer of cnc-motion {}", env!("CARGO_PKG_VERSION")),
-            ),
-            ("variableNamingConvention", "structured".into()),
-            ("numberOfEventIndicators", "0".into()),
-        ],
-    );
+    let header: Vec<(&str, String)> = [
+        ("fmiVersion", "2.0".into()),
+        ("modelName", info.model_name.clone()),
+        ("guid", info.guid.clone()),
+        ("description", info.description.clone()),
+        ("version", info.version.clone()),
+        ("author", info.author.clone()),
+        ("copyright", info.copyright.clone()),
+        ("license", info.license.clone()),
+        (
+            "generationTool",
+            format!("fmi2 layer of cnc-motion {}", env!("CARGO_PKG_VERSION")),
+        ),
+        ("variableNamingConvention", "structured".into()),
+        ("numberOfEventIndicators", "0".into()),
+    ]
+    .into_iter()
+    .filter(|(_, v)| !v.is_empty())
+    .collect();
+    start(&mut w, "fmiModelDescription", &header);
     empty(
         &mut w,
         "CoSimulation",
@@ -177,8 +180,13 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
         .collect();
     if !outputs.is_empty() {
         start(&mut w, "Outputs", &[]);
-        for i in &outputs {
-            empty(&mut w, "Unknown", &[("index", (i + 1).to_string())]);
+        for &i in &outputs {
+            let mut a = vec![("index", (i + 1).to_string())];
+            if let Some(deps) = &info.variables[i].dependencies {
+                let list: Vec<String> = deps.iter().map(|d| (d + 1).to_string()).collect();
+                a.push(("dependencies", list.join(" ")));
+            }
+            empty(&mut w, "Unknown", &a);
         }
         end(&mut w, "Outputs");
         start(&mut w, "InitialUnknowns", &[]);
@@ -224,6 +232,14 @@ fn variable(w: &mut W, info: &ModelInfo, v: &VariableInfo, start_value: Option<V
     }
     if let Some(d) = &v.display_unit {
         t.push(("displayUnit", d.clone()));
+    }
+    if matches!(v.kind, Type::Real | Type::Integer) {
+        let n = |x: f64| match v.kind {
+            Type::Integer => (x as i64).to_string(),
+            _ => real(x),
+        };
+        t.extend(v.min.map(|x| ("min", n(x))));
+        t.extend(v.max.map(|x| ("max", n(x))));
     }
     if let (true, Some(s)) = (v.has_start(), start_value) {
         t.push(("start", value_text(&s)));

@@ -5,7 +5,7 @@
 
 pub mod modal;
 
-use fmi2::{Causality, DisplayUnit, ModelInfo, Type, UnitDefinition, Value, Variability, VariableInfo};
+use fmi2::{Causality, ModelInfo, Type, Value, Variability, VariableInfo};
 use modal::{Mode, ModeState};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -82,103 +82,62 @@ enum Slot {
     LoadForce(usize),
 }
 
+/// The table: one row per variable and what it reads or writes.
 fn table() -> &'static [(VariableInfo, Slot)] {
     static T: OnceLock<Vec<(VariableInfo, Slot)>> = OnceLock::new();
     T.get_or_init(|| {
-        let mut t = Vec::new();
-        let mut add = |name: String,
-                       kind: Causality,
-                       var: Variability,
-                       unit: Option<&str>,
-                       desc: String,
-                       slot: Slot| {
-            let vr = t.len() as u32 + 1;
-            t.push((
-                VariableInfo {
-                    name,
-                    value_reference: vr,
-                    kind: Type::Real,
-                    causality: kind,
-                    variability: var,
-                    unit: unit.map(str::to_string),
-                    display_unit: (unit == Some("m")).then(|| "mm".to_string()),
-                    description: desc,
-                },
-                slot,
-            ));
+        use Causality::{Input, Output, Parameter};
+        use Variability::{Continuous, Fixed};
+        let row = |name: String, c, v, unit, desc: String| {
+            VariableInfo::new(name, Type::Real, c, v, desc).unit(unit)
         };
+        let mut t = Vec::new();
         for (i, a) in AXES.iter().enumerate() {
             for k in 0..MODES {
                 let n = k + 1;
-                add(
-                    format!("{a}.mode{n}.frequency"),
-                    Causality::Parameter,
-                    Variability::Fixed,
-                    Some("Hz"),
-                    format!("{a} mode {n}: natural frequency"),
-                    Slot::Mode(i, k, 0),
-                );
-                add(
-                    format!("{a}.mode{n}.damping"),
-                    Causality::Parameter,
-                    Variability::Fixed,
-                    Some("1"),
-                    format!("{a} mode {n}: damping ratio"),
-                    Slot::Mode(i, k, 1),
-                );
-                add(
-                    format!("{a}.mode{n}.mass"),
-                    Causality::Parameter,
-                    Variability::Fixed,
-                    Some("kg"),
-                    format!("{a} mode {n}: modal mass"),
-                    Slot::Mode(i, k, 2),
-                );
+                let modes = [
+                    ("frequency", "natural frequency", "Hz"),
+                    ("damping", "damping ratio", "1"),
+                    ("mass", "modal mass", "kg"),
+                ];
+                for (f, (field, what, unit)) in modes.into_iter().enumerate() {
+                    let v = row(
+                        format!("{a}.mode{n}.{field}"),
+                        Parameter,
+                        Fixed,
+                        unit,
+                        format!("{a} mode {n}: {what}"),
+                    );
+                    t.push((v.range(Some(0.0), None), Slot::Mode(i, k, f)));
+                }
             }
-            add(
-                format!("{a}.couplingMass"),
-                Causality::Parameter,
-                Variability::Fixed,
-                Some("kg"),
-                format!("mass riding on the frame along {a} (table); loadForce = −couplingMass·acceleration"),
-                Slot::Coupling(i),
-            );
+            let desc =
+                format!("mass riding on the frame along {a} (table); loadForce = −couplingMass·acceleration");
+            let v = row(format!("{a}.couplingMass"), Parameter, Fixed, "kg", desc);
+            t.push((v.range(Some(0.0), None), Slot::Coupling(i)));
         }
+        let force0 = t.len();
         for (i, a) in AXES.iter().enumerate() {
-            add(
-                format!("{a}.driveForce"),
-                Causality::Input,
-                Variability::Continuous,
-                Some("N"),
-                format!("force of the {a} drive on the frame"),
+            let desc = format!("force of the {a} drive on the frame");
+            t.push((
+                row(format!("{a}.driveForce"), Input, Continuous, "N", desc),
                 Slot::Force(i),
-            );
+            ));
         }
         for (i, a) in AXES.iter().enumerate() {
-            add(
-                format!("{a}.deflection"),
-                Causality::Output,
-                Variability::Continuous,
-                Some("m"),
-                format!("tool-point deflection of the frame along {a}"),
-                Slot::Deflection(i),
+            let desc = format!("tool-point deflection of the frame along {a}");
+            let v = row(format!("{a}.deflection"), Output, Continuous, "m", desc);
+            t.push((v.depends_on(vec![]), Slot::Deflection(i)));
+            // a = Σ (F/m − 2ζω q̇ − ω² q): the drive force of the same axis feeds through.
+            let desc = format!("frame acceleration along {a} (direct feed-through of {a}.driveForce)");
+            let v = row(format!("{a}.acceleration"), Output, Continuous, "m/s2", desc);
+            t.push((v.depends_on(vec![force0 + i]), Slot::Acceleration(i)));
+            let desc = format!(
+                "inertial force of the moving frame on the {a} table, −couplingMass·(modal acceleration \
+                 without the direct F/m term); to CncMotion {a}.loadForce"
             );
-            add(
-                format!("{a}.acceleration"),
-                Causality::Output,
-                Variability::Continuous,
-                Some("m/s2"),
-                format!("frame acceleration along {a}"),
-                Slot::Acceleration(i),
-            );
-            add(
-                format!("{a}.loadForce"),
-                Causality::Output,
-                Variability::Continuous,
-                Some("N"),
-                format!("inertial force of the moving frame on the {a} table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion {a}.loadForce"),
-                Slot::LoadForce(i),
-            );
+            let v = row(format!("{a}.loadForce"), Output, Continuous, "N", desc);
+            t.push((v.depends_on(vec![]), Slot::LoadForce(i)));
         }
         t
     })
@@ -191,38 +150,14 @@ impl fmi2::Model for MachineStructureFmu {
     fn info() -> &'static ModelInfo {
         static INFO: OnceLock<ModelInfo> = OnceLock::new();
         INFO.get_or_init(|| {
-            let variables: Vec<VariableInfo> = table().iter().map(|(v, _)| v.clone()).collect();
-            let u = |name: &str, base: [i32; 8], display: Vec<DisplayUnit>| UnitDefinition {
-                name: name.into(),
-                base,
-                display,
-            };
+            let variables = table().iter().map(|(v, _)| v.clone()).collect();
+            let description = "Modal model of a machine frame driven by the axis drive forces";
             ModelInfo {
-                model_name: "MachineStructure".into(),
-                model_identifier: "MachineStructure".into(),
-                guid: fmi2::guid_of(&variables),
-                description: "Modal model of a machine frame driven by the axis drive forces".into(),
                 version: env!("CARGO_PKG_VERSION").into(),
-                variables,
-                enumerations: Vec::new(),
-                units: vec![
-                    u(
-                        "m",
-                        [0, 1, 0, 0, 0, 0, 0, 0],
-                        vec![DisplayUnit {
-                            name: "mm".into(),
-                            factor: 1e3,
-                            offset: 0.0,
-                        }],
-                    ),
-                    u("m/s2", [0, 1, -2, 0, 0, 0, 0, 0], vec![]),
-                    u("N", [1, 1, -2, 0, 0, 0, 0, 0], vec![]),
-                    u("kg", [1, 0, 0, 0, 0, 0, 0, 0], vec![]),
-                    u("Hz", [0, 0, -1, 0, 0, 0, 0, 0], vec![]),
-                    u("1", [0; 8], vec![]),
-                ],
-                log_categories: Vec::new(),
-                default_experiment: (0.0, 1.0, 1e-6, 0.001),
+                author: "cnc-motion authors".into(),
+                copyright: "Copyright (c) 2026 the cnc-motion authors".into(),
+                license: "MIT".into(),
+                ..ModelInfo::new("MachineStructure", description, variables)
             }
         })
     }
@@ -281,12 +216,14 @@ impl fmi2::Model for MachineStructureFmu {
         Ok(())
     }
 
+    /// bincode of the whole model (fixed-size plain data; the layer adds magic, version, GUID
+    /// and length).
     fn serialize(&self) -> Vec<u8> {
-        serde_json::to_vec(&self.0).unwrap_or_default()
+        bincode::serialize(&self.0).unwrap_or_default()
     }
 
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String> {
-        self.0 = serde_json::from_slice(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
+        self.0 = bincode::deserialize(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
         Ok(())
     }
 }
@@ -299,25 +236,14 @@ pub fn model_description() -> String {
 /// Write MachineStructure.fmu from the built shared library `lib`.
 pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
     let xml = model_description();
-    let mut doc = String::from(
-        "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>MachineStructure</title></head><body>\
-         <h1>MachineStructure</h1><p>Modal model of a machine frame (two modes per direction, exact \
-         zero-order-hold discretisation, any step size). Inputs: <code>x.driveForce</code> … from \
-         CncMotion; outputs: <code>x.deflection</code>, <code>x.acceleration</code>, <code>x.loadForce</code> \
-         (back to CncMotion <code>x.loadForce</code> for two-way coupling). Defaults: a small mill \
-         (45/120 Hz in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json.</p>\
-         <table border=\"1\"><tr><th>name</th><th>causality</th><th>unit</th><th>description</th></tr>",
+    let doc = fmi2::documentation::<MachineStructureFmu>(
+        "<p>Modal model of a machine frame (two modes per direction, exact zero-order-hold \
+         discretisation, any step size). Inputs: <code>x.driveForce</code> … from CncMotion; outputs: \
+         <code>x.deflection</code>, <code>x.acceleration</code>, <code>x.loadForce</code> (back to \
+         CncMotion <code>x.loadForce</code> for two-way coupling). Only <code>x.acceleration</code> \
+         depends directly on an input (<code>x.driveForce</code>). Defaults: a small mill (45/120 Hz \
+         in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json.</p>",
     );
-    for (v, _) in table() {
-        doc.push_str(&format!(
-            "<tr><td><code>{}</code></td><td>{:?}</td><td>{}</td><td>{}</td></tr>",
-            v.name,
-            v.causality,
-            v.unit.as_deref().unwrap_or(""),
-            v.description
-        ));
-    }
-    doc.push_str("</table></body></html>\n");
     fmi2::package::write_fmu(
         path,
         &fmi2::package::FmuFiles {
