@@ -163,120 +163,113 @@ fn servo_type(fmi_name: &str) -> Type {
     }
 }
 
-/// The table, in value-reference order (1…n).
+/// The table, in value-reference order (1…n): parameters, inputs, then [`outputs`].
 pub fn rows() -> Vec<(VariableInfo, Slot)> {
     use Causality::{Input, Parameter};
-    use Variability::{Continuous, Discrete, Fixed};
-    let par = |name: String, kind, desc: &str| VariableInfo::new(name, kind, Parameter, Fixed, desc);
-    let real = |name: String, unit, desc: &str| par(name, Type::Real, desc).unit(unit);
-    let mut t = vec![
-        (
-            par(
-                "program".into(),
-                Type::String,
-                "G-code program text; empty: read programFile",
-            ),
-            Slot::Program,
+    use Type::{Boolean, Enumeration, Integer, Real};
+    let par =
+        |name: &str, kind, desc: &str| VariableInfo::new(name, kind, Parameter, Variability::Fixed, desc);
+    let input = |name: &str, kind, desc: &str| {
+        let variability = if kind == Boolean {
+            Variability::Discrete
+        } else {
+            Variability::Continuous
+        };
+        VariableInfo::new(name, kind, Input, variability, desc)
+    };
+    let mut t = Vec::new();
+    let mut add = |slot, v| t.push((v, slot));
+    add(
+        Slot::Program,
+        par(
+            "program",
+            Type::String,
+            "G-code program text; empty: read programFile",
         ),
-        (
-            par(
-                "programFile".into(),
-                Type::String,
-                "G-code file, relative to the FMU's resources",
-            ),
-            Slot::ProgramFile,
+    );
+    add(
+        Slot::ProgramFile,
+        par(
+            "programFile",
+            Type::String,
+            "G-code file, relative to the FMU's resources",
         ),
-    ];
+    );
     for (k, (name, unit, desc)) in MACHINE_REALS.iter().enumerate() {
-        t.push((
-            real(format!("machine.{name}"), unit, desc).range(Some(0.0), None),
-            Slot::Machine(k),
-        ));
+        let v = par(&format!("machine.{name}"), Real, desc).unit(unit);
+        add(Slot::Machine(k), v.range(Some(0.0), None));
     }
-    let int = |name: &str, desc| par(format!("machine.{name}"), Type::Integer, desc);
-    t.extend([
-        (
-            int("lookaheadBlocks", "look-ahead window (segments)").range(Some(2.0), Some(1e6)),
-            Slot::Lookahead,
-        ),
-        (
-            par("machine.profile".into(), Type::Enumeration(0), "acc/dec law"),
-            Slot::Profile,
-        ),
-        (
-            int(
-                "profileIndex",
-                "acc/dec law as an Integer: 0 use machine.profile, 1…5 its items",
-            )
-            .range(Some(0.0), Some(5.0)),
-            Slot::ProfileIndex,
-        ),
-        (
-            par("machine.corner".into(), Type::Enumeration(1), "corner passage"),
-            Slot::Corner,
-        ),
-        (
-            int(
-                "cornerIndex",
-                "corner passage as an Integer: 0 use machine.corner, 1…4 its items",
-            )
-            .range(Some(0.0), Some(4.0)),
-            Slot::CornerIndex,
-        ),
-    ]);
+    let lookahead = par("machine.lookaheadBlocks", Integer, "look-ahead window (segments)");
+    add(Slot::Lookahead, lookahead.range(Some(2.0), Some(1e6)));
+    add(
+        Slot::Profile,
+        par("machine.profile", Enumeration(0), "acc/dec law"),
+    );
+    let index = "as an Integer for importers without Enumerations: 0 keeps";
+    let v = par(
+        "machine.profileIndex",
+        Integer,
+        &format!("acc/dec law {index} machine.profile, 1…5"),
+    );
+    add(Slot::ProfileIndex, v.range(Some(0.0), Some(5.0)));
+    add(
+        Slot::Corner,
+        par("machine.corner", Enumeration(1), "corner passage"),
+    );
+    let v = par(
+        "machine.cornerIndex",
+        Integer,
+        &format!("corner passage {index} machine.corner, 1…4"),
+    );
+    add(Slot::CornerIndex, v.range(Some(0.0), Some(4.0)));
     for (i, a) in AXES.iter().enumerate() {
         for (k, (name, unit)) in LIMITS.iter().enumerate() {
             let desc = format!("{a} axis {} limit", &name[3..].to_lowercase());
-            t.push((
-                real(format!("{a}.{name}"), unit, &desc).range(Some(0.0), None),
+            add(
                 Slot::Limit(i, k),
-            ));
+                par(&format!("{a}.{name}"), Real, &desc)
+                    .unit(unit)
+                    .range(Some(0.0), None),
+            );
         }
     }
     for (i, a) in AXES.iter().enumerate() {
         for (k, p) in SERVO.iter().enumerate() {
             let (kind, desc) = (servo_type(p.fmi_name), format!("{a} drive: {}", p.description));
-            let mut v = par(format!("{a}.servo.{}", p.fmi_name), kind, &desc);
-            if kind == Type::Real {
+            let mut v = par(&format!("{a}.servo.{}", p.fmi_name), kind, &desc);
+            if kind == Real {
                 v = v.unit(p.unit);
             }
             if p.description.ends_with("0…1") {
                 v = v.range(Some(0.0), Some(1.0));
             }
-            t.push((v, Slot::Servo(i, k)));
+            add(Slot::Servo(i, k), v);
         }
     }
-    t.push((
+    add(
+        Slot::ServoEnabled,
         par(
-            "servo.enabled".into(),
-            Type::Boolean,
+            "servo.enabled",
+            Boolean,
             "simulate the drives (off: actual = command)",
         ),
-        Slot::ServoEnabled,
-    ));
-    let input = |name: String, kind, v, desc: &str| VariableInfo::new(name, kind, Input, v, desc);
-    t.push((
-        input(
-            "feedOverride".into(),
-            Type::Real,
-            Continuous,
-            "feed override factor (jerk-limited)",
-        )
-        .unit("1")
-        .range(Some(0.0), Some(2.0)),
-        Slot::FeedOverride,
-    ));
-    let hold = "feed hold: stop on the path within the limits; release resumes";
-    t.push((
-        input("feedHold".into(), Type::Boolean, Discrete, hold),
+    );
+    let v = input("feedOverride", Real, "feed override factor (jerk-limited)").unit("1");
+    add(Slot::FeedOverride, v.range(Some(0.0), Some(2.0)));
+    add(
         Slot::FeedHold,
-    ));
+        input(
+            "feedHold",
+            Boolean,
+            "feed hold: stop on the path within the limits",
+        ),
+    );
     for (i, a) in AXES.iter().enumerate() {
         let desc = format!("external force on the {a} table (from a structure model)");
-        t.push((
-            input(format!("{a}.loadForce"), Type::Real, Continuous, &desc).unit("N"),
+        add(
             Slot::LoadForce(i),
-        ));
+            input(&format!("{a}.loadForce"), Real, &desc).unit("N"),
+        );
     }
     outputs(&mut t);
     t
@@ -284,45 +277,72 @@ pub fn rows() -> Vec<(VariableInfo, Slot)> {
 
 /// Outputs: none depends directly on an input (inputs act from the next step on).
 fn outputs(t: &mut Vec<(VariableInfo, Slot)>) {
-    let out = |name: String, kind, v, desc: &str| {
-        VariableInfo::new(name, kind, Causality::Output, v, desc).depends_on(vec![])
-    };
+    use Type::{Boolean, Integer, Real};
     let (tick, cont) = (Variability::Discrete, Variability::Continuous);
+    let mut add = |slot, name: &str, kind, variability, unit: Option<&str>, desc: &str| {
+        let v = VariableInfo::new(name, kind, Causality::Output, variability, desc).depends_on(vec![]);
+        t.push((unit.map_or(v.clone(), |u| v.unit(u)), slot));
+    };
     for (i, a) in AXES.iter().enumerate() {
         for (k, (name, unit)) in COMMAND.iter().enumerate() {
-            let v = out(
-                format!("{a}.command.{name}"),
-                Type::Real,
+            let desc = format!("{a} commanded {name}");
+            add(
+                Slot::Command(i, k),
+                &format!("{a}.command.{name}"),
+                Real,
                 tick,
-                &format!("{a} commanded {name}"),
+                Some(unit),
+                &desc,
             );
-            t.push((v.unit(unit), Slot::Command(i, k)));
         }
     }
     for (k, (name, unit, desc)) in PATH.iter().enumerate() {
-        t.push((
-            out(format!("path.{name}"), Type::Real, tick, desc).unit(unit),
+        add(
             Slot::Path(k),
-        ));
+            &format!("path.{name}"),
+            Real,
+            tick,
+            Some(unit),
+            desc,
+        );
     }
-    let line = "source line of the block being executed";
-    t.push((out("status.line".into(), Type::Integer, tick, line), Slot::Line));
-    let finished = "all motion of the program done";
-    t.push((
-        out("status.finished".into(), Type::Boolean, tick, finished),
+    add(
+        Slot::Line,
+        "status.line",
+        Integer,
+        tick,
+        None,
+        "source line of the block being executed",
+    );
+    add(
         Slot::Finished,
-    ));
+        "status.finished",
+        Boolean,
+        tick,
+        None,
+        "all motion of the program done",
+    );
     for (i, a) in AXES.iter().enumerate() {
         for (k, (name, unit, desc)) in DRIVE.iter().enumerate() {
-            let v = out(format!("{a}.{name}"), Type::Real, cont, &format!("{a} {desc}"));
-            t.push((v.unit(unit), Slot::Drive(i, k)));
+            add(
+                Slot::Drive(i, k),
+                &format!("{a}.{name}"),
+                Real,
+                cont,
+                Some(unit),
+                &format!("{a} {desc}"),
+            );
         }
     }
-    let contour = "distance of the actual tool point from the programmed path";
-    t.push((
-        out("path.contourError".into(), Type::Real, cont, contour).unit("m"),
+    let desc = "distance of the actual tool point from the programmed path";
+    add(
         Slot::ContourError,
-    ));
+        "path.contourError",
+        Real,
+        cont,
+        Some("m"),
+        desc,
+    );
 }
 
 fn positive(x: f64) -> Result<f64, String> {

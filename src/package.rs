@@ -2,7 +2,7 @@
 //! modelDescription.xml, the default program and an HTML page describing the variables.
 
 use crate::fmu::{model_description, CncMotionFmu, DEFAULT_PROGRAM};
-use fmi2::package::{write_fmu as write_archive, FmuFiles};
+use fmi2::package::{manifest, sources_readme, tree, write_fmu as write_archive, Entry, FmuFiles};
 use fmi2::Model;
 use std::path::{Path, PathBuf};
 
@@ -51,6 +51,35 @@ pub fn documentation() -> String {
     fmi2::documentation::<CncMotionFmu>(&intro)
 }
 
+/// sources/: this crate (manifest without its benches and dev-dependencies, in a workspace of
+/// itself and crates/fmi2), its lock file, src/, the default program, and the fmi2 crate.
+pub fn sources() -> Result<Vec<Entry>, String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let read = |p: &str| std::fs::read_to_string(root.join(p)).map_err(|e| format!("{p}: {e}"));
+    let members = [(r#""crates/fmi2", "crates/machine-structure""#, r#""crates/fmi2""#)];
+    let cargo = manifest(
+        &read("Cargo.toml")?,
+        &["[dev-dependencies]", "[[bench]]"],
+        &members,
+    );
+    let mut files = vec![
+        ("Cargo.toml".to_string(), cargo.into_bytes()),
+        ("Cargo.lock".to_string(), read("Cargo.lock")?.into_bytes()),
+        (
+            "resources/default.ngc".to_string(),
+            DEFAULT_PROGRAM.as_bytes().to_vec(),
+        ),
+        (
+            "crates/fmi2/Cargo.toml".to_string(),
+            read("crates/fmi2/Cargo.toml")?.into_bytes(),
+        ),
+        sources_readme("CncMotion", "cnc_motion"),
+    ];
+    files.extend(tree(&root.join("src"), "src")?);
+    files.extend(tree(&root.join("crates/fmi2/src"), "crates/fmi2/src")?);
+    Ok(files)
+}
+
 pub fn write_fmu(path: &Path) -> Result<(), String> {
     let lib = shared_library()?;
     let xml = model_description();
@@ -63,6 +92,7 @@ pub fn write_fmu(path: &Path) -> Result<(), String> {
             shared_library: &lib,
             resources: vec![("default.ngc".into(), DEFAULT_PROGRAM.as_bytes().to_vec())],
             documentation_html: &doc,
+            sources: sources()?,
         },
     )
 }

@@ -52,7 +52,9 @@ pub struct Snapshot<M> {
     pub state: State,
 }
 
-const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x01";
+/// Serialized FMU state: magic "FMI2RS", format version (u16, big-endian), then GUID, time,
+/// slave state and the model's own (bincode) bytes, each length-prefixed and checked on reading.
+const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x02";
 
 pub struct Instance<M: Model> {
     pub name: CString,
@@ -268,6 +270,7 @@ impl<M: Model> Instance<M> {
             2 => State::StepComplete,
             3 => State::StepFailed,
             4 => State::Terminated,
+            5 => State::Error,
             _ => return Err("serialized FMU state has an invalid slave state".into()),
         };
         let len = u64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad length")?) as usize;

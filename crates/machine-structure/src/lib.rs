@@ -233,6 +233,23 @@ pub fn model_description() -> String {
     fmi2::model_description::<MachineStructureFmu>()
 }
 
+/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/) and the fmi2 crate.
+pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
+    use fmi2::package::{manifest, sources_readme, tree};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("Cargo.toml")).map_err(|e| format!("Cargo.toml: {e}"))?;
+    let cargo = manifest(&text, &[], &[("../fmi2", "fmi2")]) + "\n[workspace]\n";
+    let fmi2_toml = std::fs::read(root.join("../fmi2/Cargo.toml")).map_err(|e| format!("fmi2: {e}"))?;
+    let mut files = vec![
+        ("Cargo.toml".to_string(), cargo.into_bytes()),
+        ("fmi2/Cargo.toml".to_string(), fmi2_toml),
+        sources_readme("MachineStructure", "machine_structure"),
+    ];
+    files.extend(tree(&root.join("src"), "src")?);
+    files.extend(tree(&root.join("../fmi2/src"), "fmi2/src")?);
+    Ok(files)
+}
+
 /// Write MachineStructure.fmu from the built shared library `lib`.
 pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
     let xml = model_description();
@@ -252,6 +269,7 @@ pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
             shared_library: lib,
             resources: Vec::new(),
             documentation_html: &doc,
+            sources: sources()?,
         },
     )
 }
