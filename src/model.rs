@@ -1,18 +1,20 @@
-//! The CncMotion FMU model: its variables as ONE table of plain rows (fmi2's own
-//! Type/Causality/Variability, units and ranges), each naming the [`Slot`] of the model it reads
-//! or writes; get and set are one match over the slots. The FMI layer (crates/fmi2) generates the
-//! XML, the units and the documentation from the rows.
+//! The CncMotion FMU model: its variables as ONE table of plain rows ([`ROWS`], fmi2's own
+//! Type/Causality/Variability), each naming the [`Slot`] of the model it reads or writes; get and
+//! set are one match over the slots. crates/fmi2 generates the XML, the units and the
+//! documentation from the rows.
 
 use crate::config::{CornerMode, Machine};
 use crate::engine::Engine;
 use crate::feed::ProfileKind;
 use crate::servo::PARAMETERS as SERVO;
+use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
+use fmi2::Type::{Boolean as BOOL, Enumeration as ENUM, Integer as INT, Real as REAL, String as STR};
+use fmi2::Variability::{Continuous as CONT, Discrete as TICK, Fixed as FIX};
 use fmi2::{Causality, Type, Value, Variability, VariableInfo};
 use std::path::PathBuf;
 use std::sync::Arc;
 
 pub const MODEL_NAME: &str = "CncMotion";
-const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Enumeration types: name and items (name, description); values are 1-based.
 pub const ENUMERATIONS: [(&str, &[(&str, &str)]); 2] = [
@@ -42,6 +44,178 @@ pub const ENUMERATIONS: [(&str, &[(&str, &str)]); 2] = [
         ],
     ),
 ];
+
+/// What a row reads or writes. `A` in a slot of the table is the axis, filled in per axis.
+#[derive(Clone, Copy, Debug)]
+pub enum Slot {
+    Program,
+    ProgramFile,
+    /// interpolationPeriod, pathTolerance, chordTolerance, maxFeed, maxPathAcceleration,
+    /// maxPathJerk, maxSnap.
+    Machine(usize),
+    Lookahead,
+    Profile,
+    ProfileIndex,
+    Corner,
+    CornerIndex,
+    /// Axis; maxVelocity, maxAcceleration, maxJerk.
+    Limit(usize, usize),
+    /// Axis; index into `servo::PARAMETERS` (one row of the table stands for all of them).
+    Servo(usize, usize),
+    ServoEnabled,
+    FeedOverride,
+    FeedHold,
+    LoadForce(usize),
+    /// Axis; position, velocity, acceleration, jerk of the command.
+    Command(usize, usize),
+    /// feed, acceleration, jerk, distance along the path.
+    Path(usize),
+    Line,
+    Finished,
+    /// Axis; position, velocity, followingError, motorTorque, driveForce of the drive.
+    Drive(usize, usize),
+    ContourError,
+}
+
+const A: usize = usize::MAX;
+const NO: Option<f64> = None;
+const ZERO: Option<f64> = Some(0.0);
+
+/// A row: name (`#` = x, y, z: one row per axis), type, causality, variability, unit ("": none),
+/// min, max, slot, description. Outputs depend on no input (inputs act from the next step on).
+type Row = (
+    &'static str,
+    Type,
+    Causality,
+    Variability,
+    &'static str,
+    Option<f64>,
+    Option<f64>,
+    Slot,
+    &'static str,
+);
+
+#[rustfmt::skip]
+pub const ROWS: &[Row] = &[
+    ("program",                     STR,     PAR, FIX,  "",     NO,   NO,        Slot::Program,          "G-code program text; empty: read programFile"),
+    ("programFile",                 STR,     PAR, FIX,  "",     NO,   NO,        Slot::ProgramFile,      "G-code file, relative to the FMU's resources"),
+    ("machine.interpolationPeriod", REAL,    PAR, FIX,  "s",    ZERO, NO,        Slot::Machine(0),       "interpolation period T"),
+    ("machine.pathTolerance",       REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(1),       "default G64 path tolerance"),
+    ("machine.chordTolerance",      REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(2),       "chord error on arcs"),
+    ("machine.maxFeed",             REAL,    PAR, FIX,  "m/s",  ZERO, NO,        Slot::Machine(3),       "maximum feed (also G0)"),
+    ("machine.maxPathAcceleration", REAL,    PAR, FIX,  "m/s2", ZERO, NO,        Slot::Machine(4),       "path acceleration limit on top of the axes' (0: none)"),
+    ("machine.maxPathJerk",         REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Machine(5),       "path jerk limit on top of the axes' (0: none)"),
+    ("machine.maxSnap",             REAL,    PAR, FIX,  "m/s4", ZERO, NO,        Slot::Machine(6),       "snap limit (jerk15)"),
+    ("machine.lookaheadBlocks",     INT,     PAR, FIX,  "",     Some(2.0), Some(1e6), Slot::Lookahead,   "look-ahead window (segments)"),
+    ("machine.profile",             ENUM(0), PAR, FIX,  "",     NO,   NO,        Slot::Profile,          "acc/dec law"),
+    ("machine.profileIndex",        INT,     PAR, FIX,  "",     ZERO, Some(5.0), Slot::ProfileIndex,     "acc/dec law as an Integer (importers without Enumerations): 0 keeps machine.profile, 1…5 its items"),
+    ("machine.corner",              ENUM(1), PAR, FIX,  "",     NO,   NO,        Slot::Corner,           "corner passage"),
+    ("machine.cornerIndex",         INT,     PAR, FIX,  "",     ZERO, Some(4.0), Slot::CornerIndex,      "corner passage as an Integer (importers without Enumerations): 0 keeps machine.corner, 1…4 its items"),
+    ("#.maxVelocity",               REAL,    PAR, FIX,  "m/s",  ZERO, NO,        Slot::Limit(A, 0),      "# axis velocity limit"),
+    ("#.maxAcceleration",           REAL,    PAR, FIX,  "m/s2", ZERO, NO,        Slot::Limit(A, 1),      "# axis acceleration limit"),
+    ("#.maxJerk",                   REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Limit(A, 2),      "# axis jerk limit"),
+    ("#.servo.*",                   REAL,    PAR, FIX,  "",     NO,   NO,        Slot::Servo(A, 0),      "# drive: "),
+    ("servo.enabled",               BOOL,    PAR, FIX,  "",     NO,   NO,        Slot::ServoEnabled,     "simulate the drives (off: actual = command)"),
+    ("feedOverride",                REAL,    IN,  CONT, "1",    ZERO, Some(2.0), Slot::FeedOverride,     "feed override factor (jerk-limited)"),
+    ("feedHold",                    BOOL,    IN,  TICK, "",     NO,   NO,        Slot::FeedHold,         "feed hold: stop on the path within the limits; release resumes"),
+    ("#.loadForce",                 REAL,    IN,  CONT, "N",    NO,   NO,        Slot::LoadForce(A),     "external force on the # table (from a structure model)"),
+    ("#.command.position",          REAL,    OUT, TICK, "m",    NO,   NO,        Slot::Command(A, 0),    "# commanded position"),
+    ("#.command.velocity",          REAL,    OUT, TICK, "m/s",  NO,   NO,        Slot::Command(A, 1),    "# commanded velocity"),
+    ("#.command.acceleration",      REAL,    OUT, TICK, "m/s2", NO,   NO,        Slot::Command(A, 2),    "# commanded acceleration"),
+    ("#.command.jerk",              REAL,    OUT, TICK, "m/s3", NO,   NO,        Slot::Command(A, 3),    "# commanded jerk"),
+    ("path.feed",                   REAL,    OUT, TICK, "m/s",  NO,   NO,        Slot::Path(0),          "path speed"),
+    ("path.acceleration",           REAL,    OUT, TICK, "m/s2", NO,   NO,        Slot::Path(1),          "path acceleration"),
+    ("path.jerk",                   REAL,    OUT, TICK, "m/s3", NO,   NO,        Slot::Path(2),          "path jerk"),
+    ("path.distance",               REAL,    OUT, TICK, "m",    NO,   NO,        Slot::Path(3),          "path distance travelled"),
+    ("status.line",                 INT,     OUT, TICK, "",     NO,   NO,        Slot::Line,             "source line of the block being executed"),
+    ("status.finished",             BOOL,    OUT, TICK, "",     NO,   NO,        Slot::Finished,         "all motion of the program done"),
+    ("#.position",                  REAL,    OUT, CONT, "m",    NO,   NO,        Slot::Drive(A, 0),      "# actual position"),
+    ("#.velocity",                  REAL,    OUT, CONT, "m/s",  NO,   NO,        Slot::Drive(A, 1),      "# actual velocity"),
+    ("#.followingError",            REAL,    OUT, CONT, "m",    NO,   NO,        Slot::Drive(A, 2),      "# following error (command − feedback)"),
+    ("#.motorTorque",               REAL,    OUT, CONT, "N.m",  NO,   NO,        Slot::Drive(A, 3),      "# motor torque"),
+    ("#.driveForce",                REAL,    OUT, CONT, "N",    NO,   NO,        Slot::Drive(A, 4),      "# force of the drive on the machine structure"),
+    ("path.contourError",           REAL,    OUT, CONT, "m",    NO,   NO,        Slot::ContourError,     "distance of the actual tool point from the programmed path"),
+];
+
+impl Slot {
+    fn on_axis(self, i: usize) -> Slot {
+        match self {
+            Slot::Limit(_, k) => Slot::Limit(i, k),
+            Slot::Servo(_, k) => Slot::Servo(i, k),
+            Slot::LoadForce(_) => Slot::LoadForce(i),
+            Slot::Command(_, k) => Slot::Command(i, k),
+            Slot::Drive(_, k) => Slot::Drive(i, k),
+            s => s,
+        }
+    }
+}
+
+/// FMI type of a servo parameter: counts are Integers, the feedback switch a Boolean.
+fn servo_type(fmi_name: &str) -> Type {
+    match fmi_name {
+        "encoderCounts" => INT,
+        "linearScale" => BOOL,
+        _ => REAL,
+    }
+}
+
+fn variable(row: &Row, axis: &str) -> VariableInfo {
+    let &(name, kind, causality, variability, unit, min, max, _, desc) = row;
+    let mut v = VariableInfo::new(
+        name.replace('#', axis),
+        kind,
+        causality,
+        variability,
+        desc.replace('#', axis),
+    );
+    if !unit.is_empty() {
+        v = v.unit(unit);
+    }
+    if causality == OUT {
+        v = v.depends_on(vec![]);
+    }
+    v.range(min, max)
+}
+
+/// The table expanded: a run of per-axis rows (`#`) once for x, then y, then z; the servo row
+/// once per drive parameter. Value references follow this order (1…n).
+pub fn rows() -> Vec<(VariableInfo, Slot)> {
+    let mut out = Vec::new();
+    let mut k = 0;
+    while k < ROWS.len() {
+        let run = ROWS[k..].iter().take_while(|r| r.0.contains('#')).count();
+        if run == 0 {
+            out.push((variable(&ROWS[k], ""), ROWS[k].7));
+            k += 1;
+            continue;
+        }
+        for (i, axis) in ["x", "y", "z"].iter().enumerate() {
+            for row in &ROWS[k..k + run] {
+                match row.7 {
+                    Slot::Servo(..) => out.extend(servo_rows(i, axis)),
+                    slot => out.push((variable(row, axis), slot.on_axis(i))),
+                }
+            }
+        }
+        k += run;
+    }
+    out
+}
+
+/// The drive parameters of one axis, from the servo's own table.
+fn servo_rows(i: usize, axis: &str) -> impl Iterator<Item = (VariableInfo, Slot)> + '_ {
+    SERVO.iter().enumerate().map(move |(j, p)| {
+        let (name, kind) = (format!("{axis}.servo.{}", p.fmi_name), servo_type(p.fmi_name));
+        let mut v = VariableInfo::new(name, kind, PAR, FIX, format!("{axis} drive: {}", p.description));
+        if kind == REAL {
+            v = v.unit(p.unit);
+        }
+        if p.description.ends_with("0…1") {
+            v = v.range(Some(0.0), Some(1.0));
+        }
+        (v, Slot::Servo(i, j))
+    })
+}
 
 /// The model: parameters and inputs as set by the importer, and the running engine.
 #[derive(Clone, Debug)]
@@ -78,271 +252,6 @@ impl Default for CncMotion {
             engine: None,
         }
     }
-}
-
-/// What a row reads or writes: axis indices and field indices, never packed.
-#[derive(Clone, Copy, Debug)]
-pub enum Slot {
-    Program,
-    ProgramFile,
-    /// Scalar Real of the machine, index into `MACHINE_REALS`.
-    Machine(usize),
-    Lookahead,
-    Profile,
-    ProfileIndex,
-    Corner,
-    CornerIndex,
-    /// Axis limit: velocity, acceleration, jerk.
-    Limit(usize, usize),
-    /// Axis, index into `servo::PARAMETERS`.
-    Servo(usize, usize),
-    ServoEnabled,
-    FeedOverride,
-    FeedHold,
-    LoadForce(usize),
-    /// Axis, position/velocity/acceleration/jerk of the command.
-    Command(usize, usize),
-    /// feed, acceleration, jerk, distance along the path.
-    Path(usize),
-    Line,
-    Finished,
-    /// Axis, position/velocity/followingError/motorTorque/driveForce of the drive.
-    Drive(usize, usize),
-    ContourError,
-}
-
-/// Scalar machine Reals: name, unit, description (0 means "none" for the optional limits).
-const MACHINE_REALS: [(&str, &str, &str); 7] = [
-    ("interpolationPeriod", "s", "interpolation period T"),
-    ("pathTolerance", "m", "default G64 path tolerance"),
-    ("chordTolerance", "m", "chord error on arcs"),
-    ("maxFeed", "m/s", "maximum feed (also G0)"),
-    (
-        "maxPathAcceleration",
-        "m/s2",
-        "path acceleration limit on top of the axes' (0: none)",
-    ),
-    (
-        "maxPathJerk",
-        "m/s3",
-        "path jerk limit on top of the axes' (0: none)",
-    ),
-    ("maxSnap", "m/s4", "snap limit (jerk15)"),
-];
-const LIMITS: [(&str, &str); 3] = [
-    ("maxVelocity", "m/s"),
-    ("maxAcceleration", "m/s2"),
-    ("maxJerk", "m/s3"),
-];
-const COMMAND: [(&str, &str); 4] = [
-    ("position", "m"),
-    ("velocity", "m/s"),
-    ("acceleration", "m/s2"),
-    ("jerk", "m/s3"),
-];
-const PATH: [(&str, &str, &str); 4] = [
-    ("feed", "m/s", "path speed"),
-    ("acceleration", "m/s2", "path acceleration"),
-    ("jerk", "m/s3", "path jerk"),
-    ("distance", "m", "path distance travelled"),
-];
-const DRIVE: [(&str, &str, &str); 5] = [
-    ("position", "m", "actual position"),
-    ("velocity", "m/s", "actual velocity"),
-    ("followingError", "m", "following error (command − feedback)"),
-    ("motorTorque", "N.m", "motor torque"),
-    ("driveForce", "N", "force of the drive on the machine structure"),
-];
-
-/// FMI type of a servo parameter: counts are Integers, the feedback switch a Boolean.
-fn servo_type(fmi_name: &str) -> Type {
-    match fmi_name {
-        "encoderCounts" => Type::Integer,
-        "linearScale" => Type::Boolean,
-        _ => Type::Real,
-    }
-}
-
-/// The table, in value-reference order (1…n): parameters, inputs, then [`outputs`].
-pub fn rows() -> Vec<(VariableInfo, Slot)> {
-    use Causality::{Input, Parameter};
-    use Type::{Boolean, Enumeration, Integer, Real};
-    let par =
-        |name: &str, kind, desc: &str| VariableInfo::new(name, kind, Parameter, Variability::Fixed, desc);
-    let input = |name: &str, kind, desc: &str| {
-        let variability = if kind == Boolean {
-            Variability::Discrete
-        } else {
-            Variability::Continuous
-        };
-        VariableInfo::new(name, kind, Input, variability, desc)
-    };
-    let mut t = Vec::new();
-    let mut add = |slot, v| t.push((v, slot));
-    add(
-        Slot::Program,
-        par(
-            "program",
-            Type::String,
-            "G-code program text; empty: read programFile",
-        ),
-    );
-    add(
-        Slot::ProgramFile,
-        par(
-            "programFile",
-            Type::String,
-            "G-code file, relative to the FMU's resources",
-        ),
-    );
-    for (k, (name, unit, desc)) in MACHINE_REALS.iter().enumerate() {
-        let v = par(&format!("machine.{name}"), Real, desc).unit(unit);
-        add(Slot::Machine(k), v.range(Some(0.0), None));
-    }
-    let lookahead = par("machine.lookaheadBlocks", Integer, "look-ahead window (segments)");
-    add(Slot::Lookahead, lookahead.range(Some(2.0), Some(1e6)));
-    add(
-        Slot::Profile,
-        par("machine.profile", Enumeration(0), "acc/dec law"),
-    );
-    let index = "as an Integer for importers without Enumerations: 0 keeps";
-    let v = par(
-        "machine.profileIndex",
-        Integer,
-        &format!("acc/dec law {index} machine.profile, 1…5"),
-    );
-    add(Slot::ProfileIndex, v.range(Some(0.0), Some(5.0)));
-    add(
-        Slot::Corner,
-        par("machine.corner", Enumeration(1), "corner passage"),
-    );
-    let v = par(
-        "machine.cornerIndex",
-        Integer,
-        &format!("corner passage {index} machine.corner, 1…4"),
-    );
-    add(Slot::CornerIndex, v.range(Some(0.0), Some(4.0)));
-    for (i, a) in AXES.iter().enumerate() {
-        for (k, (name, unit)) in LIMITS.iter().enumerate() {
-            let desc = format!("{a} axis {} limit", &name[3..].to_lowercase());
-            add(
-                Slot::Limit(i, k),
-                par(&format!("{a}.{name}"), Real, &desc)
-                    .unit(unit)
-                    .range(Some(0.0), None),
-            );
-        }
-    }
-    for (i, a) in AXES.iter().enumerate() {
-        for (k, p) in SERVO.iter().enumerate() {
-            let (kind, desc) = (servo_type(p.fmi_name), format!("{a} drive: {}", p.description));
-            let mut v = par(&format!("{a}.servo.{}", p.fmi_name), kind, &desc);
-            if kind == Real {
-                v = v.unit(p.unit);
-            }
-            if p.description.ends_with("0…1") {
-                v = v.range(Some(0.0), Some(1.0));
-            }
-            add(Slot::Servo(i, k), v);
-        }
-    }
-    add(
-        Slot::ServoEnabled,
-        par(
-            "servo.enabled",
-            Boolean,
-            "simulate the drives (off: actual = command)",
-        ),
-    );
-    let v = input("feedOverride", Real, "feed override factor (jerk-limited)").unit("1");
-    add(Slot::FeedOverride, v.range(Some(0.0), Some(2.0)));
-    add(
-        Slot::FeedHold,
-        input(
-            "feedHold",
-            Boolean,
-            "feed hold: stop on the path within the limits",
-        ),
-    );
-    for (i, a) in AXES.iter().enumerate() {
-        let desc = format!("external force on the {a} table (from a structure model)");
-        add(
-            Slot::LoadForce(i),
-            input(&format!("{a}.loadForce"), Real, &desc).unit("N"),
-        );
-    }
-    outputs(&mut t);
-    t
-}
-
-/// Outputs: none depends directly on an input (inputs act from the next step on).
-fn outputs(t: &mut Vec<(VariableInfo, Slot)>) {
-    use Type::{Boolean, Integer, Real};
-    let (tick, cont) = (Variability::Discrete, Variability::Continuous);
-    let mut add = |slot, name: &str, kind, variability, unit: Option<&str>, desc: &str| {
-        let v = VariableInfo::new(name, kind, Causality::Output, variability, desc).depends_on(vec![]);
-        t.push((unit.map_or(v.clone(), |u| v.unit(u)), slot));
-    };
-    for (i, a) in AXES.iter().enumerate() {
-        for (k, (name, unit)) in COMMAND.iter().enumerate() {
-            let desc = format!("{a} commanded {name}");
-            add(
-                Slot::Command(i, k),
-                &format!("{a}.command.{name}"),
-                Real,
-                tick,
-                Some(unit),
-                &desc,
-            );
-        }
-    }
-    for (k, (name, unit, desc)) in PATH.iter().enumerate() {
-        add(
-            Slot::Path(k),
-            &format!("path.{name}"),
-            Real,
-            tick,
-            Some(unit),
-            desc,
-        );
-    }
-    add(
-        Slot::Line,
-        "status.line",
-        Integer,
-        tick,
-        None,
-        "source line of the block being executed",
-    );
-    add(
-        Slot::Finished,
-        "status.finished",
-        Boolean,
-        tick,
-        None,
-        "all motion of the program done",
-    );
-    for (i, a) in AXES.iter().enumerate() {
-        for (k, (name, unit, desc)) in DRIVE.iter().enumerate() {
-            add(
-                Slot::Drive(i, k),
-                &format!("{a}.{name}"),
-                Real,
-                cont,
-                Some(unit),
-                &format!("{a} {desc}"),
-            );
-        }
-    }
-    let desc = "distance of the actual tool point from the programmed path";
-    add(
-        Slot::ContourError,
-        "path.contourError",
-        Real,
-        cont,
-        Some("m"),
-        desc,
-    );
 }
 
 fn positive(x: f64) -> Result<f64, String> {
