@@ -4,14 +4,13 @@ use crate::config::Machine;
 use crate::engine::Engine;
 use crate::model::{self, CncMotion, Slot, ENUMERATIONS};
 use fmi2::{EnumerationType, ModelInfo, Value, VariableInfo};
-use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
 
 /// The default program shipped in the FMU's resources (and used by `make demo`).
 pub const DEFAULT_PROGRAM: &str = include_str!("../resources/default.ngc");
 
-/// Version of the serialized model state (bincode of [`SavedModel`]).
+/// Version of the serialized model state (see `serialize`).
 const STATE_VERSION: u32 = 2;
 
 /// The model as the FMI layer sees it.
@@ -86,74 +85,37 @@ impl fmi2::Model for CncMotionFmu {
         self.0.do_step(h)
     }
 
+    /// bincode of (model version, parameters and inputs, program text and engine state).
     fn serialize(&self) -> Vec<u8> {
-        let m = &self.0;
-        let state = SavedModel {
-            version: STATE_VERSION,
-            program: m.program.clone(),
-            program_file: m.program_file.clone(),
-            machine: m.machine.clone(),
-            indices: (m.profile_index, m.corner_index),
-            servo_enabled: m.servo_enabled,
-            feed_override: m.feed_override,
-            feed_hold: m.feed_hold,
-            load_force: m.load_force,
-            engine: m
-                .engine
-                .as_ref()
-                .map(|e| (e.program().to_string(), e.save_state())),
-        };
-        bincode::serialize(&state).unwrap_or_default()
+        let engine = self
+            .0
+            .engine
+            .as_ref()
+            .map(|e| (e.program().to_string(), e.save_state()));
+        bincode::serialize(&(STATE_VERSION, &self.0, engine)).unwrap_or_default()
     }
 
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String> {
-        let s: SavedModel = bincode::deserialize(bytes).map_err(|e| format!("model state: {e}"))?;
-        if s.version != STATE_VERSION {
-            return Err(format!(
-                "model state version {}, expected {STATE_VERSION}",
-                s.version
-            ));
+        type Saved = (u32, CncMotion, Option<(String, Vec<u8>)>);
+        let (version, mut m, engine): Saved =
+            bincode::deserialize(bytes).map_err(|e| format!("model state: {e}"))?;
+        if version != STATE_VERSION {
+            return Err(format!("model state version {version}, expected {STATE_VERSION}"));
         }
-        let engine = match s.engine {
-            Some((text, bytes)) => {
-                let mut e =
-                    Engine::new(Arc::from(text), &s.program_file, &s.machine).map_err(|e| e.to_string())?;
-                e.restore_state(&bytes)?;
-                Some(e)
-            }
-            None => None,
-        };
-        self.0 = CncMotion {
-            program: s.program,
-            program_file: s.program_file,
-            machine: s.machine,
-            profile_index: s.indices.0,
-            corner_index: s.indices.1,
-            servo_enabled: s.servo_enabled,
-            feed_override: s.feed_override,
-            feed_hold: s.feed_hold,
-            load_force: s.load_force,
-            resources: self.0.resources.clone(),
-            engine,
-        };
+        if let Some((text, bytes)) = engine {
+            let name = if m.program.trim().is_empty() {
+                m.program_file.as_str()
+            } else {
+                "program"
+            };
+            let mut e = Engine::new(Arc::from(text), name, &m.machine).map_err(|e| e.to_string())?;
+            e.restore_state(&bytes)?;
+            m.engine = Some(e);
+        }
+        m.resources = self.0.resources.clone();
+        self.0 = m;
         Ok(())
     }
-}
-
-#[derive(Serialize, Deserialize)]
-struct SavedModel {
-    version: u32,
-    program: String,
-    program_file: String,
-    machine: Machine,
-    /// machine.profileIndex, machine.cornerIndex.
-    indices: (i32, i32),
-    servo_enabled: bool,
-    feed_override: f64,
-    feed_hold: bool,
-    load_force: [f64; 3],
-    /// Program text and engine state.
-    engine: Option<(String, Vec<u8>)>,
 }
 
 /// modelDescription.xml of CncMotion, start values read from a default model.

@@ -11,6 +11,7 @@ use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
 use fmi2::Type::{Boolean as BOOL, Enumeration as ENUM, Integer as INT, Real as REAL, String as STR};
 use fmi2::Variability::{Continuous as CONT, Discrete as TICK, Fixed as FIX};
 use fmi2::{Causality, Type, Value, Variability, VariableInfo};
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -217,8 +218,9 @@ fn servo_rows(i: usize, axis: &str) -> impl Iterator<Item = (VariableInfo, Slot)
     })
 }
 
-/// The model: parameters and inputs as set by the importer, and the running engine.
-#[derive(Clone, Debug)]
+/// The model: parameters and inputs as set by the importer, and the running engine (serialized
+/// by the FMU separately, with the program text it needs).
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CncMotion {
     pub program: String,
     pub program_file: String,
@@ -232,7 +234,9 @@ pub struct CncMotion {
     pub feed_hold: bool,
     pub load_force: [f64; 3],
     /// The FMU's resources folder (for relative `programFile`).
+    #[serde(skip)]
     pub resources: Option<PathBuf>,
+    #[serde(skip)]
     pub engine: Option<Engine>,
 }
 
