@@ -18,7 +18,9 @@ fn value_html(v: &Option<Value>) -> String {
         Some(Value::Real(x)) => real(*x),
         Some(Value::Integer(n)) => n.to_string(),
         Some(Value::Boolean(b)) => b.to_string(),
-        Some(Value::String(s)) if s.len() > 40 => format!("{}…", escape(&s[..s.floor_char_boundary(40)])),
+        Some(Value::String(s)) if s.chars().count() > 40 => {
+            format!("{}…", escape(&s.chars().take(40).collect::<String>()))
+        }
         Some(Value::String(s)) => escape(s),
         None => String::new(),
     }
@@ -60,4 +62,29 @@ pub fn html(info: &ModelInfo, intro_html: &str, starts: &[Option<Value>]) -> Str
     }
     h.push_str("</table></body></html>\n");
     h
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Causality, ModelInfo, Type, Variability, VariableInfo};
+
+    #[test]
+    fn names_and_descriptions_are_escaped() {
+        let v = VariableInfo::new(
+            "a<b",
+            Type::Real,
+            Causality::Output,
+            Variability::Continuous,
+            "x < y & \"z\"",
+        );
+        let info = ModelInfo::new("M&N", "d", vec![v.unit("m")]);
+        let html = super::html(&info, "<p>intro</p>", &[None]);
+        assert!(html.contains("<code>a&lt;b</code>"), "{html}");
+        assert!(html.contains("x &lt; y &amp; &quot;z&quot;"), "{html}");
+        assert!(html.contains("<title>M&amp;N</title>") && html.contains("<p>intro</p>"));
+        assert!(
+            html.contains("<td>m</td><td>mm</td>"),
+            "unit and its default display unit"
+        );
+    }
 }

@@ -177,6 +177,67 @@ pub unsafe fn with<M: Model>(c: Component, call: Call, f: impl FnOnce(&mut Insta
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::{mask, Call};
+
+    #[test]
+    fn in_the_error_state_only_get_status_reset_and_fmu_state_calls_are_allowed() {
+        use Call::*;
+        let all = [
+            SetDebugLogging,
+            SetupExperiment,
+            EnterInitializationMode,
+            ExitInitializationMode,
+            Terminate,
+            Reset,
+            GetReal,
+            GetInteger,
+            GetBoolean,
+            GetString,
+            SetReal,
+            SetInteger,
+            SetBoolean,
+            SetString,
+            GetFmuState,
+            SetFmuState,
+            FreeFmuState,
+            SerializedFmuStateSize,
+            SerializeFmuState,
+            DeserializeFmuState,
+            GetDirectionalDerivative,
+            SetRealInputDerivatives,
+            GetRealOutputDerivatives,
+            DoStep,
+            CancelStep,
+            GetStatus,
+            GetRealStatus,
+            GetIntegerStatus,
+            GetBooleanStatus,
+            GetStringStatus,
+        ];
+        let allowed: Vec<&str> = all
+            .iter()
+            .filter(|c| c.spec().1 & mask::ERROR != 0)
+            .map(|c| c.name())
+            .collect();
+        for name in &allowed {
+            let ok = name.starts_with("fmi2Get")
+                || name.contains("FMUstate")
+                || *name == "fmi2Reset"
+                || *name == "fmi2SetDebugLogging";
+            assert!(ok, "{name} allowed in Error");
+        }
+        assert!(!allowed.contains(&"fmi2DoStep") && !allowed.contains(&"fmi2Terminate"));
+        assert!(allowed.contains(&"fmi2SetFMUstate") && allowed.contains(&"fmi2GetReal"));
+        // Set* follow the standard: before initialization ends and in StepComplete only.
+        assert_eq!(
+            SetReal.spec().1,
+            mask::INSTANTIATED | mask::INIT | mask::STEP_COMPLETE
+        );
+    }
+}
+
 pub(crate) unsafe fn opt_str<'a>(p: *const c_char) -> Option<&'a str> {
     if p.is_null() {
         None
