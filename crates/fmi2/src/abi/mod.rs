@@ -177,6 +177,45 @@ pub unsafe fn with<M: Model>(c: Component, call: Call, f: impl FnOnce(&mut Insta
     }
 }
 
+pub(crate) unsafe fn opt_str<'a>(p: *const c_char) -> Option<&'a str> {
+    if p.is_null() {
+        None
+    } else {
+        CStr::from_ptr(p).to_str().ok()
+    }
+}
+
+/// Slices behind array arguments; NULL is only allowed with n = 0.
+pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
+    if n == 0 {
+        Some(&[])
+    } else if p.is_null() {
+        None
+    } else {
+        Some(std::slice::from_raw_parts(p, n))
+    }
+}
+
+pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
+    if n == 0 {
+        Some(&mut [])
+    } else if p.is_null() {
+        None
+    } else {
+        Some(std::slice::from_raw_parts_mut(p, n))
+    }
+}
+
+/// Functions this FMU does not provide: log and refuse.
+///
+/// # Safety
+/// C ABI.
+pub unsafe fn unsupported<M: Model>(c: Component, call: Call) -> c_int {
+    with::<M>(c, call, |inst| {
+        inst.error(&format!("{} is not supported by this FMU", call.name()))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::{mask, Call};
@@ -236,43 +275,4 @@ mod tests {
             mask::INSTANTIATED | mask::INIT | mask::STEP_COMPLETE
         );
     }
-}
-
-pub(crate) unsafe fn opt_str<'a>(p: *const c_char) -> Option<&'a str> {
-    if p.is_null() {
-        None
-    } else {
-        CStr::from_ptr(p).to_str().ok()
-    }
-}
-
-/// Slices behind array arguments; NULL is only allowed with n = 0.
-pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
-    if n == 0 {
-        Some(&[])
-    } else if p.is_null() {
-        None
-    } else {
-        Some(std::slice::from_raw_parts(p, n))
-    }
-}
-
-pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
-    if n == 0 {
-        Some(&mut [])
-    } else if p.is_null() {
-        None
-    } else {
-        Some(std::slice::from_raw_parts_mut(p, n))
-    }
-}
-
-/// Functions this FMU does not provide: log and refuse.
-///
-/// # Safety
-/// C ABI.
-pub unsafe fn unsupported<M: Model>(c: Component, call: Call) -> c_int {
-    with::<M>(c, call, |inst| {
-        inst.error(&format!("{} is not supported by this FMU", call.name()))
-    })
 }
