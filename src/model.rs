@@ -352,7 +352,8 @@ impl CncMotion {
         }
     }
 
-    /// Write a parameter or input; bad values are refused with the reason.
+    /// Write a parameter or input; bad values are refused with the reason (the FMI layer has
+    /// already refused non-finite Reals and values outside the declared min/max).
     pub fn set(&mut self, slot: Slot, value: Value) -> Result<(), String> {
         let m = &mut self.machine;
         match (slot, value) {
@@ -367,18 +368,11 @@ impl CncMotion {
                 5 => m.max_path_jerk = optional(x)?,
                 _ => m.max_snap = positive(x)?,
             },
-            (Slot::Lookahead, Value::Integer(n)) if (2..=1_000_000).contains(&n) => {
-                m.lookahead_blocks = n as usize
-            }
-            (Slot::Lookahead, Value::Integer(n)) => return Err(format!("must be 2 … 1000000, got {n}")),
+            (Slot::Lookahead, Value::Integer(n)) => m.lookahead_blocks = n as usize,
             (Slot::Profile, Value::Integer(n)) => m.profile = item(&ProfileKind::ALL, n)?,
             (Slot::Corner, Value::Integer(n)) => m.corner = item(&CornerMode::ALL, n)?,
-            (Slot::ProfileIndex, Value::Integer(n)) => {
-                self.profile_index = if n == 0 { 0 } else { item(&[1, 2, 3, 4, 5], n)? }
-            }
-            (Slot::CornerIndex, Value::Integer(n)) => {
-                self.corner_index = if n == 0 { 0 } else { item(&[1, 2, 3, 4], n)? }
-            }
+            (Slot::ProfileIndex, Value::Integer(n)) => self.profile_index = n,
+            (Slot::CornerIndex, Value::Integer(n)) => self.corner_index = n,
             (Slot::Limit(i, k), Value::Real(x)) => {
                 let l = &mut m.axes[i];
                 *[&mut l.max_velocity, &mut l.max_acceleration, &mut l.max_jerk][k] = positive(x)?;
@@ -393,13 +387,9 @@ impl CncMotion {
                 m.servo[i].set(SERVO[k].fmi_name, x)?
             }
             (Slot::ServoEnabled, Value::Boolean(b)) => self.servo_enabled = b,
-            (Slot::FeedOverride, Value::Real(x)) if (0.0..=2.0).contains(&x) => self.feed_override = x,
-            (Slot::FeedOverride, Value::Real(x)) => {
-                return Err(format!("feedOverride must be 0 … 2, got {x}"))
-            }
+            (Slot::FeedOverride, Value::Real(x)) => self.feed_override = x,
             (Slot::FeedHold, Value::Boolean(b)) => self.feed_hold = b,
-            (Slot::LoadForce(i), Value::Real(x)) if x.is_finite() => self.load_force[i] = x,
-            (Slot::LoadForce(_), Value::Real(x)) => return Err(format!("loadForce must be finite, got {x}")),
+            (Slot::LoadForce(i), Value::Real(x)) => self.load_force[i] = x,
             _ => return Err("cannot be set".into()),
         }
         Ok(())

@@ -199,3 +199,27 @@ def test_serialized_state_is_compact_and_checked(fmu):
     assert status_of(s.fmu.deSerializeFMUstate, bytes(bad)) == fmi2Error
     s.fmu.freeFMUstate(state)
     s.fmu.freeInstance()
+
+
+def test_declared_ranges_are_enforced(fmu):
+    """Every declared min/max is checked on set (outside → fmi2Error naming the range), NaN never
+    passes, and the bounds themselves are accepted by the layer (the model may refuse 0 where it
+    needs a positive number)."""
+    ranged = [v for v in fmu.md.modelVariables
+              if v.causality in ("parameter", "input") and (v.min is not None or v.max is not None)]
+    assert ranged, "no declared ranges"
+    if fmu.md.modelName == "CncMotion":
+        assert {"feedOverride", "machine.lookaheadBlocks", "machine.profileIndex"} <= {v.name for v in ranged}
+    for v in ranged:
+        for bound, step in ((v.min, -1), (v.max, +1)):
+            if bound is None:
+                continue
+            s = fmusim.Slave(fmu, "range")
+            value = float(bound) + step
+            assert status_of(s.set, v.name, value) == fmi2Error, (v.name, value)
+            assert "is outside its range" in s.log[-1][2], s.log[-1]
+            s.fmu.freeInstance()
+    s = fmusim.Slave(fmu, "nan")
+    assert status_of(s.set, an_input(fmu).name, math.nan) == fmi2Error
+    assert "is not finite" in s.log[-1][2]
+    s.fmu.freeInstance()

@@ -1,7 +1,7 @@
 //! One FMU instance: the FMI 2.0 Co-Simulation state machine, the rules on which variable may be
 //! set when, the logger, FMU states and their serialization. Plain Rust; abi.rs does the C side.
 
-use crate::{Causality, Model, Type, Value, Variability};
+use crate::{Causality, Model, Type, Value, Variability, VariableInfo};
 use std::ffi::{c_char, c_int, c_void, CString};
 use std::path::PathBuf;
 
@@ -55,6 +55,25 @@ pub struct Snapshot<M> {
 /// Serialized FMU state: magic "FMI2RS", format version (u16, big-endian), then GUID, time,
 /// slave state and the model's own (bincode) bytes, each length-prefixed and checked on reading.
 const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x02";
+
+/// Why a value is outside what the variable declares (non-finite Real, min/max, enumeration
+/// items), if it is.
+fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<String> {
+    let x = match *value {
+        Value::Real(x) if !x.is_finite() => return Some(format!("{x} is not finite")),
+        Value::Real(x) => x,
+        Value::Integer(n) => n as f64,
+        _ => return None,
+    };
+    let (min, max) = match v.kind {
+        Type::Enumeration(e) => (Some(1.0), Some(M::info().enumerations[e].items.len() as f64)),
+        _ => (v.min, v.max),
+    };
+    let below = min.is_some_and(|m| x < m);
+    let above = max.is_some_and(|m| x > m);
+    let bound = |b: Option<f64>| b.map_or("…".into(), |b| b.to_string());
+    (below || above).then(|| format!("{x} is outside its range {} … {}", bound(min), bound(max)))
+}
 
 pub struct Instance<M: Model> {
     pub name: CString,
@@ -200,16 +219,8 @@ impl<M: Model> Instance<M> {
             );
             return Err(self.error(&msg));
         }
-        if let Value::Integer(n) = value {
-            if let Type::Enumeration(e) = v.kind {
-                let items = M::info().enumerations[e].items.len() as i32;
-                if !(1..=items).contains(&n) {
-                    return Err(self.error(&format!(
-                        "{function}: '{}' = {n} is not an item 1 … {items}",
-                        v.name
-                    )));
-                }
-            }
+        if let Some(reason) = out_of_range::<M>(v, &value) {
+            return Err(self.error(&format!("{function}: '{}' = {reason}", v.name)));
         }
         let name = v.name.clone();
         self.model
