@@ -74,7 +74,7 @@ fn bench(c: &mut Criterion) {
             let mut queue: VecDeque<Planned> = VecDeque::new();
             let mut planned = 0;
             for s in &segs {
-                planner.push(*s, &mut queue);
+                planner.push(s.clone(), &mut queue);
                 planned += queue.len();
                 queue.clear();
             }

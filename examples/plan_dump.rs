@@ -37,6 +37,10 @@ fn main() {
             Segment::Blend(_) => "blend",
             Segment::Dwell { .. } => "dwell",
             Segment::Part { .. } => "part",
+            Segment::Chain(ref c) => {
+                print!("[{} pieces] ", c.pieces.len());
+                "chain"
+            }
         };
         total += p.profile.duration();
         println!(

@@ -16,17 +16,21 @@ pub enum CornerMode {
     AccelerationPeriod,
     /// Seed 004 eq. 8–10: a circular arc inserted inside the tolerance.
     Circular,
-    /// Seed 004 §3 eq. 25–57: a quintic transition inside the axis tolerances.
-    #[default]
+    /// Seed 004 §3 eq. 25–57: a quintic transition inside the axis tolerances, at one speed.
     Polynomial,
+    /// Every junction blended by a C2 quintic transition planned with the path, micro-segment
+    /// runs smoothed as one curve (path/smooth.rs).
+    #[default]
+    Smooth,
 }
 
 impl CornerMode {
-    pub const ALL: [CornerMode; 4] = [
+    pub const ALL: [CornerMode; 5] = [
         CornerMode::ExactStop,
         CornerMode::AccelerationPeriod,
         CornerMode::Circular,
         CornerMode::Polynomial,
+        CornerMode::Smooth,
     ];
 
     pub fn name(self) -> &'static str {
@@ -35,6 +39,7 @@ impl CornerMode {
             CornerMode::AccelerationPeriod => "acceleration_period",
             CornerMode::Circular => "circular",
             CornerMode::Polynomial => "polynomial",
+            CornerMode::Smooth => "smooth",
         }
     }
 }
@@ -89,7 +94,7 @@ impl Default for Machine {
             interpolation_period: 0.001,
             lookahead_blocks: 256,
             profile: ProfileKind::Scurve7,
-            corner: CornerMode::Polynomial,
+            corner: CornerMode::Smooth,
             path_tolerance: 0.01e-3,
             chord_tolerance: 0.001e-3,
             max_feed: 6000.0 / 60.0 * 1e-3,

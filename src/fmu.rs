@@ -2,8 +2,8 @@
 
 use crate::config::Machine;
 use crate::engine::Engine;
-use crate::model::{self, CncMotion, Slot, ENUMERATIONS};
-use fmi2::{EnumerationType, ModelInfo, Value, VariableInfo};
+use crate::model::{self, CncMotion, Slot};
+use fmi2::{ModelInfo, Value, VariableInfo};
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
 
@@ -43,19 +43,12 @@ impl fmi2::Model for CncMotionFmu {
             let variables = table().iter().map(|(v, _)| v.clone()).collect();
             let description =
                 "CNC motion controller: G-code to jerk-limited axis motion through servo drives";
-            let enumerations = ENUMERATIONS.iter().map(|(name, items)| EnumerationType {
-                name: name.to_string(),
-                items: items
-                    .iter()
-                    .map(|(n, d)| (n.to_string(), d.to_string()))
-                    .collect(),
-            });
             ModelInfo {
                 version: env!("CARGO_PKG_VERSION").into(),
                 author: "cnc-motion authors".into(),
                 copyright: "Copyright (c) 2026 the cnc-motion authors".into(),
                 license: env!("CARGO_PKG_LICENSE").into(),
-                enumerations: enumerations.collect(),
+                enumerations: model::enumerations(),
                 default_experiment: (0.0, default_stop_time(), 1e-6, 0.001),
                 ..ModelInfo::new(model::MODEL_NAME, description, variables)
             }

@@ -17,34 +17,47 @@ use std::sync::Arc;
 
 pub const MODEL_NAME: &str = "CncMotion";
 
-/// Enumeration types: name and items (name, description); values are 1-based.
-pub const ENUMERATIONS: [(&str, &[(&str, &str)]); 2] = [
-    (
-        "Profile",
-        &[
-            ("scurve7", "7-phase jerk-limited S-curve (Pessoles et al.)"),
-            ("quintic", "quintic polynomial feedrate (Chen et al.)"),
-            ("jerk15", "15-phase jerk-continuous law (Ji et al.)"),
-            ("mixed57", "mixed 7/5-period S-curve (Zhang et al.)"),
-            ("trapezoid", "linear acceleration/deceleration"),
-        ],
-    ),
-    (
-        "Corner",
-        &[
-            ("exact_stop", "stop at every corner"),
-            (
-                "acceleration_period",
-                "corner feed A·T/(1−cos θ) per axis (seed 003)",
-            ),
-            ("circular", "circular blend within the path tolerance"),
-            (
-                "polynomial",
-                "quintic transition within the path tolerance (seed 004)",
-            ),
-        ],
-    ),
-];
+/// What an acc/dec law is (an Enumeration item's description; every law must have one).
+fn profile_doc(k: ProfileKind) -> &'static str {
+    match k {
+        ProfileKind::Scurve7 => "7-phase jerk-limited S-curve (Pessoles et al.)",
+        ProfileKind::Quintic => "quintic polynomial feedrate (Chen et al.)",
+        ProfileKind::Jerk15 => "15-phase jerk-continuous law (Ji et al.)",
+        ProfileKind::Mixed57 => "mixed 7/5-period S-curve (Zhang et al.)",
+        ProfileKind::Trapezoid => "linear acceleration/deceleration",
+    }
+}
+
+fn corner_doc(c: CornerMode) -> &'static str {
+    match c {
+        CornerMode::ExactStop => "stop at every corner",
+        CornerMode::AccelerationPeriod => "corner feed A·T/(1−cos θ) per axis (seed 003)",
+        CornerMode::Circular => "circular blend within the path tolerance",
+        CornerMode::Polynomial => "quintic transition at one speed within the path tolerance (seed 004)",
+        CornerMode::Smooth => "C2 quintic transitions planned with the path, micro-segment runs as one curve",
+    }
+}
+
+/// The Enumeration types `Profile` and `Corner`: items (name, description) 1…n in the order of
+/// `ProfileKind::ALL` / `CornerMode::ALL`, so the XML follows the library's lists.
+pub fn enumerations() -> Vec<fmi2::EnumerationType> {
+    fn items<T: Copy>(
+        all: &[T],
+        name: fn(T) -> &'static str,
+        doc: fn(T) -> &'static str,
+    ) -> Vec<(String, String)> {
+        all.iter()
+            .map(|&k| (name(k).to_string(), doc(k).to_string()))
+            .collect()
+    }
+    let profile = items(&ProfileKind::ALL, ProfileKind::name, profile_doc);
+    let corner = items(&CornerMode::ALL, CornerMode::name, corner_doc);
+    let e = |name: &str, items| fmi2::EnumerationType {
+        name: name.into(),
+        items,
+    };
+    vec![e("Profile", profile), e("Corner", corner)]
+}
 
 /// What a row reads or writes. `A` in a slot of the table is the axis, filled in per axis.
 #[derive(Clone, Copy, Debug)]
@@ -109,9 +122,9 @@ pub const ROWS: &[Row] = &[
     ("machine.maxSnap",             REAL,    PAR, FIX,  "m/s4", ZERO, NO,        Slot::Machine(6),       "snap limit (jerk15)"),
     ("machine.lookaheadBlocks",     INT,     PAR, FIX,  "",     Some(2.0), Some(1e6), Slot::Lookahead,   "look-ahead window (segments)"),
     ("machine.profile",             ENUM(0), PAR, FIX,  "",     NO,   NO,        Slot::Profile,          "acc/dec law"),
-    ("machine.profileIndex",        INT,     PAR, FIX,  "",     ZERO, Some(5.0), Slot::ProfileIndex,     "acc/dec law as an Integer (importers without Enumerations): 0 keeps machine.profile, 1…5 its items"),
+    ("machine.profileIndex",        INT,     PAR, FIX,  "",     ZERO, NO,        Slot::ProfileIndex,     "acc/dec law as an Integer (importers without Enumerations): 0 keeps machine.profile, 1… its items"),
     ("machine.corner",              ENUM(1), PAR, FIX,  "",     NO,   NO,        Slot::Corner,           "corner passage"),
-    ("machine.cornerIndex",         INT,     PAR, FIX,  "",     ZERO, Some(4.0), Slot::CornerIndex,      "corner passage as an Integer (importers without Enumerations): 0 keeps machine.corner, 1…4 its items"),
+    ("machine.cornerIndex",         INT,     PAR, FIX,  "",     ZERO, NO,        Slot::CornerIndex,      "corner passage as an Integer (importers without Enumerations): 0 keeps machine.corner, 1… its items"),
     ("#.maxVelocity",               REAL,    PAR, FIX,  "m/s",  ZERO, NO,        Slot::Limit(A, 0),      "# axis velocity limit"),
     ("#.maxAcceleration",           REAL,    PAR, FIX,  "m/s2", ZERO, NO,        Slot::Limit(A, 1),      "# axis acceleration limit"),
     ("#.maxJerk",                   REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Limit(A, 2),      "# axis jerk limit"),
@@ -175,6 +188,12 @@ fn variable(row: &Row, axis: &str) -> VariableInfo {
     if causality == OUT {
         v = v.depends_on(vec![]);
     }
+    // The Integer twins of the Enumerations range over the same items.
+    let max = match row.7 {
+        Slot::ProfileIndex => Some(ProfileKind::ALL.len() as f64),
+        Slot::CornerIndex => Some(CornerMode::ALL.len() as f64),
+        _ => max,
+    };
     v.range(min, max)
 }
 

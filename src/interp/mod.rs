@@ -155,7 +155,7 @@ impl Interpolator {
     /// cut and `None` comes back too; the caller re-plans from the queue.
     pub fn cut(&mut self, a_tolerance: f64) -> Option<(crate::path::PathBlock, f64)> {
         let c = self.current.as_ref()?;
-        let block = c.planned.block;
+        let block = c.planned.block.clone();
         if block.constant_speed || matches!(block.segment, Segment::Dwell { .. }) {
             return None;
         }
@@ -230,12 +230,13 @@ impl Interpolator {
         let (v, a, j) = axis_motion(&g, &k);
         Tick {
             t,
-            line: c.planned.block.line,
+            line: seg.line_at(s).unwrap_or(c.planned.block.line),
             p: g.p,
             v,
             a,
             j,
-            feed: k.v,
+            // Chains run in a parameter with |p'| ≈ 1; the feed is the speed along the path.
+            feed: crate::path::norm(v),
             path_acceleration: k.a,
             path_jerk: k.j,
             distance: self.distance_done + s,

@@ -217,13 +217,40 @@ const TANGENTIAL_SHARE: f64 = 0.1;
 /// So axis a = d2·v² + d1·a and j = d3·v³ + 3·d2·v·a + d1·j stay within the axis limits for any
 /// v ≤ v_max, |a| ≤ A_c, |j| ≤ J_c.
 pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
-    let b = arc.derivative_bounds();
-    let rho = arc.curvature_radius();
-    let mut v = constant_speed_limit(&b, machine).min(chord_error_speed(
-        rho,
-        machine.chord_tolerance,
-        machine.interpolation_period,
-    ));
+    let shares = Shares {
+        a_cap: 0.5,
+        tangential: TANGENTIAL_SHARE,
+    };
+    curve_limits(
+        &arc.derivative_bounds(),
+        arc.curvature_radius(),
+        f64::INFINITY,
+        machine,
+        shares,
+    )
+}
+
+/// How `curve_limits` splits the axis budgets: A_c at most `a_cap` of its free value, and the
+/// tangential acceleration and jerk at least `tangential` of theirs.
+#[derive(Clone, Copy, Debug)]
+pub struct Shares {
+    pub a_cap: f64,
+    pub tangential: f64,
+}
+
+/// Path limits on any curve whose derivatives w.r.t. its parameter are bounded per axis by
+/// `b` (|p'|, |p''|, |p'''|), `rho` its smallest radius of curvature (chord error), as described
+/// for arcs above, the speed never above `v_cap`. The largest v_max whose budget keeps the
+/// tangential shares is found by bisection (the budget shrinks as v grows).
+pub fn curve_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, machine: &Machine, shares: Shares) -> Limits {
+    let v0 = constant_speed_limit(b, machine)
+        .min(chord_error_speed(
+            rho,
+            machine.chord_tolerance,
+            machine.interpolation_period,
+        ))
+        .min(v_cap);
+    let a_share = shares.a_cap;
     let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
     for (i, ax) in machine.axes.iter().enumerate() {
         if b[0][i] > 1e-12 {
@@ -237,10 +264,10 @@ pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
     if let Some(j) = machine.max_path_jerk {
         j_free = j_free.min(j);
     }
-    let (a_min, j_min) = (TANGENTIAL_SHARE * a_free, TANGENTIAL_SHARE * j_free);
+    let (a_min, j_min) = (shares.tangential * a_free, shares.tangential * j_free);
     // (A_c, J_c) at speed v, or None when either falls below its share.
     let budget = |v: f64| -> Option<(f64, f64)> {
-        let mut a_c = 0.5 * a_free;
+        let mut a_c = a_share * a_free;
         for (i, ax) in machine.axes.iter().enumerate() {
             let [d1, d2, d3] = [b[0][i], b[1][i], b[2][i]];
             if d1 > 1e-12 {
@@ -260,15 +287,21 @@ pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
         }
         (a_c >= a_min && j_c >= j_min).then_some((a_c, j_c))
     };
-    let mut found = budget(v);
-    for _ in 0..300 {
-        if found.is_some() {
-            break;
+    let (v, (a_c, j_c)) = match budget(v0) {
+        Some(found) => (v0, found),
+        None => {
+            let (mut lo, mut hi) = (0.0, v0);
+            for _ in 0..BISECTION_STEPS {
+                let mid = 0.5 * (lo + hi);
+                if budget(mid).is_some() {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            (lo, budget(lo).unwrap_or((a_min, j_min)))
         }
-        v *= 0.98;
-        found = budget(v);
-    }
-    let (a_c, j_c) = found.unwrap_or((a_min, j_min));
+    };
     Limits {
         v_max: v,
         a_max: a_c,
@@ -276,6 +309,9 @@ pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
         snap_max: machine.max_snap,
     }
 }
+
+/// Steps of the v_max bisection (the interval shrinks by 2^-60).
+const BISECTION_STEPS: usize = 60;
 
 #[cfg(test)]
 mod tests {

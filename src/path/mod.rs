@@ -18,13 +18,19 @@ use serde::{Deserialize, Serialize};
 
 mod arc;
 mod blend;
+mod chain;
 mod corner;
+mod hermite;
 mod line;
+mod smooth;
 
-pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, plane_axes, Arc};
+pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, plane_axes, Arc, Shares};
 pub use blend::Blend;
+pub use chain::{Chain, Curve, Piece};
 pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed};
+pub use hermite::{Hermite, Jet};
 pub use line::{line_limits, Line};
+pub use smooth::{distance_to_segment, Move, SmoothBuilder, Source};
 
 /// A point of a segment and its derivatives with respect to the path parameter s:
 /// axis velocity = d1·v, acceleration = d2·v² + d1·a, jerk = d3·v³ + 3·d2·v·a + d1·j.
@@ -37,8 +43,10 @@ pub struct Geo {
 }
 
 /// One piece of the path, parameterised by s ∈ [0, length()].
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Segment {
+    /// Lines, arcs and transitions joined C2, run by one profile (`smooth` corner mode).
+    Chain(Chain),
     Line(Line),
     /// Arc or helix (G2/G3, or a circular corner blend).
     Arc(Arc),
@@ -61,19 +69,37 @@ pub enum Segment {
 }
 
 /// A segment that can be cut into parts.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Whole {
     Line(Line),
     Arc(Arc),
     Blend(Blend),
+    Chain(Chain),
 }
 
 impl Whole {
-    fn segment(&self) -> Segment {
-        match *self {
-            Whole::Line(l) => Segment::Line(l),
-            Whole::Arc(a) => Segment::Arc(a),
-            Whole::Blend(b) => Segment::Blend(b),
+    fn length(&self) -> f64 {
+        match self {
+            Whole::Line(l) => l.length(),
+            Whole::Arc(a) => a.length(),
+            Whole::Blend(b) => b.length,
+            Whole::Chain(c) => c.length(),
+        }
+    }
+    fn eval(&self, s: f64) -> Geo {
+        match self {
+            Whole::Line(l) => l.eval(s),
+            Whole::Arc(a) => a.eval(s),
+            Whole::Blend(b) => b.eval(s),
+            Whole::Chain(c) => c.eval(s),
+        }
+    }
+    fn end(&self) -> Vec3 {
+        match self {
+            Whole::Line(l) => l.end,
+            Whole::Arc(a) => a.end,
+            Whole::Blend(b) => b.end(),
+            Whole::Chain(c) => c.end(),
         }
     }
 }
@@ -81,11 +107,12 @@ impl Whole {
 impl Segment {
     /// The piece [from, from + len] of this segment (None for a dwell).
     pub fn part(&self, from: f64, len: f64) -> Option<Segment> {
-        let (whole, s0, to_end_of_whole) = match *self {
-            Segment::Line(l) => (Whole::Line(l), 0.0, self.length()),
-            Segment::Arc(a) => (Whole::Arc(a), 0.0, self.length()),
-            Segment::Blend(b) => (Whole::Blend(b), 0.0, self.length()),
-            Segment::Part { whole, s0, .. } => (whole, s0, whole.segment().length() - s0),
+        let (whole, s0, to_end_of_whole) = match self {
+            Segment::Line(l) => (Whole::Line(*l), 0.0, self.length()),
+            Segment::Arc(a) => (Whole::Arc(*a), 0.0, self.length()),
+            Segment::Blend(b) => (Whole::Blend(*b), 0.0, self.length()),
+            Segment::Chain(c) => (Whole::Chain(c.clone()), 0.0, self.length()),
+            Segment::Part { whole, s0, .. } => (whole.clone(), *s0, whole.length() - s0),
             Segment::Dwell { .. } => return None,
         };
         let to_end = from + len >= to_end_of_whole * (1.0 - 1e-15) && self.ends_whole();
@@ -111,6 +138,7 @@ impl Segment {
             Segment::Line(l) => l.length(),
             Segment::Arc(a) => a.length(),
             Segment::Blend(b) => b.length,
+            Segment::Chain(c) => c.length(),
             Segment::Dwell { .. } => 0.0,
             Segment::Part { len, .. } => *len,
         }
@@ -121,6 +149,7 @@ impl Segment {
             Segment::Line(l) => l.eval(s),
             Segment::Arc(a) => a.eval(s),
             Segment::Blend(b) => b.eval(s),
+            Segment::Chain(c) => c.eval(s),
             Segment::Dwell { at, .. } => Geo {
                 p: *at,
                 ..Geo::default()
@@ -131,13 +160,12 @@ impl Segment {
                 len,
                 to_end,
             } => {
-                let w = whole.segment();
                 if *to_end && s >= *len {
-                    let mut g = w.eval(w.length());
-                    g.p = w.end();
+                    let mut g = whole.eval(whole.length());
+                    g.p = whole.end();
                     g
                 } else {
-                    w.eval(s0 + s.clamp(0.0, *len))
+                    whole.eval(s0 + s.clamp(0.0, *len))
                 }
             }
         }
@@ -146,6 +174,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.start,
             Segment::Blend(b) => b.start(),
+            Segment::Chain(c) => c.start(),
             _ => self.eval(0.0).p,
         }
     }
@@ -155,6 +184,7 @@ impl Segment {
             Segment::Line(l) => l.end,
             Segment::Arc(a) => a.end,
             Segment::Blend(b) => b.end(),
+            Segment::Chain(c) => c.end(),
             Segment::Dwell { at, .. } => *at,
             Segment::Part {
                 whole,
@@ -162,19 +192,31 @@ impl Segment {
                 len,
                 to_end,
             } => {
-                let w = whole.segment();
                 if *to_end {
-                    w.end()
+                    whole.end()
                 } else {
-                    w.eval(s0 + len).p
+                    whole.eval(s0 + len).p
                 }
             }
+        }
+    }
+
+    /// Program line of the point at s, for segments that span several lines (chains).
+    pub fn line_at(&self, s: f64) -> Option<u32> {
+        match self {
+            Segment::Chain(c) => Some(c.line_at(s)),
+            Segment::Part {
+                whole: Whole::Chain(c),
+                s0,
+                ..
+            } => Some(c.line_at(s0 + s)),
+            _ => None,
         }
     }
 }
 
 /// A segment ready for planning: what the look-ahead needs to know about it.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PathBlock {
     /// Source line of the block this segment comes from.
     pub line: u32,
@@ -191,6 +233,8 @@ pub struct PathBlock {
 
 /// Moves shorter than this (m) are dropped.
 const MIN_LENGTH: f64 = 1e-12;
+/// Largest share of a programmed line a constant-speed transition may replace at one end.
+const TRANSITION_SHARE: f64 = 0.4;
 /// Margin on the sampled derivative bounds of a quintic transition.
 const BLEND_SPEED_MARGIN: f64 = 0.99;
 
@@ -209,6 +253,7 @@ struct Held {
 pub struct PathBuilder {
     machine: Machine,
     held: Option<Held>,
+    smooth: SmoothBuilder,
 }
 
 impl PathBuilder {
@@ -216,6 +261,7 @@ impl PathBuilder {
         PathBuilder {
             machine: machine.clone(),
             held: None,
+            smooth: SmoothBuilder::new(),
         }
     }
 
@@ -248,6 +294,7 @@ impl PathBuilder {
             },
             Motion::Dwell { seconds } => {
                 self.release(0.0, out);
+                self.smooth.stop(&self.machine, out);
                 out.push(PathBlock {
                     line: block.line,
                     segment: Segment::Dwell {
@@ -263,11 +310,35 @@ impl PathBuilder {
             }
             Motion::Stop(_) => {
                 self.release(0.0, out);
+                self.smooth.stop(&self.machine, out);
                 return;
             }
         };
         let length = segment.length();
         if length.is_nan() || length <= MIN_LENGTH {
+            return;
+        }
+        if self.machine.corner == CornerMode::Smooth {
+            let source = match segment {
+                Segment::Arc(a) => Source::Arc(a),
+                Segment::Line(l) => Source::Line(l),
+                _ => return,
+            };
+            let (tolerance, exact) = match block.path_mode {
+                PathMode::ExactStop => (self.machine.path_tolerance, true),
+                PathMode::Blend {
+                    tolerance: Some(t), ..
+                } if t > 0.0 => (t, false),
+                PathMode::Blend { .. } => (self.machine.path_tolerance, false),
+            };
+            let mv = Move {
+                source,
+                line: block.line,
+                feed: feed.max(0.0),
+                tolerance,
+                exact,
+            };
+            self.smooth.push(mv, &self.machine, out);
             return;
         }
         let limits = match &segment {
@@ -296,6 +367,7 @@ impl PathBuilder {
     /// End of program: release the held segment, stopping at its end.
     pub fn finish(&mut self, out: &mut Vec<PathBlock>) {
         self.release(0.0, out);
+        self.smooth.stop(&self.machine, out);
     }
 
     fn release(&mut self, v_end_max: f64, out: &mut Vec<PathBlock>) {
@@ -344,14 +416,17 @@ impl PathBuilder {
                 match m.corner {
                     CornerMode::ExactStop => 0.0,
                     CornerMode::AccelerationPeriod => corner_feed(t_in, t_out, m).min(feeds),
-                    CornerMode::Circular | CornerMode::Polynomial => {
+                    CornerMode::Circular | CornerMode::Polynomial | CornerMode::Smooth => {
                         let tol = match held.mode {
                             PathMode::Blend {
                                 tolerance: Some(t), ..
                             } if t > 0.0 => t,
                             _ => m.path_tolerance,
                         };
-                        let max_cut = (0.5 * held.programmed.min(next.programmed)).min(h.length());
+                        // A share below one half leaves a piece of every line between two transitions:
+                        // a constant-speed transition needs a block after it that can stop.
+                        let max_cut =
+                            (TRANSITION_SHARE * held.programmed.min(next.programmed)).min(h.length());
                         let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds);
                         match trans {
                             Some((segment, v)) => {
@@ -364,17 +439,18 @@ impl PathBuilder {
                                     end: n.end,
                                 });
                                 held.block.v_end_max = v;
-                                if held.block.segment.length() > MIN_LENGTH {
-                                    out.push(held.block);
-                                }
                                 let limits = Limits {
                                     v_max: v,
                                     a_max: held.block.limits.a_max.min(next.block.limits.a_max),
                                     j_max: held.block.limits.j_max.min(next.block.limits.j_max),
                                     snap_max: m.max_snap,
                                 };
+                                let line = held.block.line;
+                                if held.block.segment.length() > MIN_LENGTH {
+                                    out.push(held.block);
+                                }
                                 out.push(PathBlock {
-                                    line: held.block.line,
+                                    line,
                                     segment,
                                     v_feed: v,
                                     limits,

@@ -6,6 +6,14 @@ use crate::gcode::{Plane, StopKind};
 const MM: f64 = 1e-3;
 const FEED: f64 = 6000.0 / 60.0 * MM;
 
+/// The seed-004 corner mode these tests are about (the default is `smooth`, tests/cam_programs.rs).
+fn polynomial() -> Machine {
+    Machine {
+        corner: CornerMode::Polynomial,
+        ..Machine::default()
+    }
+}
+
 fn blend_mode(tol: Option<f64>) -> PathMode {
     PathMode::Blend {
         tolerance: tol,
@@ -50,7 +58,7 @@ fn square() -> Vec<[f64; 3]> {
 
 #[test]
 fn polynomial_corners_on_a_square() {
-    let m = Machine::default();
+    let m = polynomial();
     let pts = square();
     let out = polyline(&m, &pts, blend_mode(None));
     assert_continuous(&out);
@@ -123,7 +131,7 @@ fn polynomial_corners_on_a_square() {
 fn blend_ticks_are_smooth() {
     // Sample the transition at its speed every 1 ms-equivalent of a slow speed: successive
     // positions are ds apart along the curve (chord ≈ arc), d1 unit.
-    let m = Machine::default();
+    let m = polynomial();
     let out = polyline(
         &m,
         &[[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.5]],
@@ -158,7 +166,7 @@ fn exact_stop_everywhere() {
     // G61 on a polynomial machine, also on collinear junctions.
     let mut pts = square();
     pts.insert(1, [5.0, 0.0, 0.0]);
-    let out = polyline(&Machine::default(), &pts, PathMode::ExactStop);
+    let out = polyline(&polynomial(), &pts, PathMode::ExactStop);
     assert_eq!(out.len(), 5);
     assert!(out.iter().all(|b| b.v_end_max == 0.0));
 }
@@ -182,7 +190,7 @@ fn acceleration_period_corner() {
 #[test]
 fn collinear_full_speed() {
     let out = polyline(
-        &Machine::default(),
+        &polynomial(),
         &[[0.0; 3], [3.0, 4.0, 0.0], [6.0, 8.0, 0.0]],
         blend_mode(None),
     );
@@ -218,7 +226,7 @@ fn circular_blend_corners() {
 #[test]
 fn short_segments_cut_at_most_half() {
     // 20 µm segments with a 1 mm tolerance: L is capped at 10 µm on each side.
-    let m = Machine::default();
+    let m = polynomial();
     let pts = [
         [0.0; 3],
         [0.02, 0.0, 0.0],
@@ -240,7 +248,7 @@ fn short_segments_cut_at_most_half() {
 
 #[test]
 fn g64_tolerance_is_used() {
-    let m = Machine::default();
+    let m = polynomial();
     let out = polyline(&m, &square(), blend_mode(Some(0.05 * MM)));
     let Segment::Blend(b) = out[1].segment else {
         panic!()
@@ -251,7 +259,7 @@ fn g64_tolerance_is_used() {
 #[test]
 fn reversal_stops() {
     let out = polyline(
-        &Machine::default(),
+        &polynomial(),
         &[[0.0; 3], [5.0, 0.0, 0.0], [1.0, 0.01, 0.0]],
         blend_mode(None),
     );
@@ -277,7 +285,7 @@ fn arc_block(line: u32, from: Vec3, to: Vec3, center: Vec3, clockwise: bool) -> 
 
 #[test]
 fn arc_junctions() {
-    let m = Machine::default();
+    let m = polynomial();
     let r = 10.0 * MM;
     let mut b = PathBuilder::new(&m);
     let mut out = Vec::new();
@@ -344,7 +352,7 @@ fn arc_junctions() {
 #[test]
 fn tangent_arcs_curvature_change() {
     // Two CCW arcs R = 10 mm then R = 20 mm, tangent at (10, 0): eq. 10 with R1R2/|R1 − R2| = 20 mm.
-    let m = Machine::default();
+    let m = polynomial();
     let r = 10.0 * MM;
     let mut b = PathBuilder::new(&m);
     let mut out = Vec::new();
@@ -365,7 +373,7 @@ fn tangent_arcs_curvature_change() {
 
 #[test]
 fn builder_state_roundtrips() {
-    let m = Machine::default();
+    let m = polynomial();
     let mut b = PathBuilder::new(&m);
     let mut out = Vec::new();
     b.push(
@@ -387,7 +395,7 @@ fn builder_state_roundtrips() {
 fn blend_speed_matches_eq54_on_gentle_corners() {
     // For gentle turns the binding limit is the axis jerk at M (eq. 53): at constant path speed
     // our sampled bound gives the same speed as eq. 54, less the 1 % sampling margin.
-    let m = Machine::default();
+    let m = polynomial();
     for deg in [10.0f64, 30.0, 45.0] {
         let th = deg.to_radians();
         let end = [10.0 + 10.0 * th.cos(), 10.0 * th.sin(), 0.0];

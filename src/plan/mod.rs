@@ -169,10 +169,14 @@ impl Planner {
     /// Backward pass from the window's end (a stop there), until the limits stop changing.
     fn backward(&mut self) {
         let mut v_next: f64 = 0.0;
+        // A stop at a block end is only a way out when the next block can start from rest: a
+        // constant-speed transition cannot (it would be traversed at zero speed, forever).
+        let mut next_can_start_at_rest = true;
         for i in (0..self.window.len()).rev() {
             let e = &self.window[i];
             let v_exit = v_next.min(e.block.v_end_max);
-            let lim = self.entry_limit(e, v_exit);
+            let lim = self.entry_limit(e, v_exit, next_can_start_at_rest);
+            next_can_start_at_rest = !e.block.constant_speed;
             let e = &mut self.window[i];
             if lim == e.v_in_lim {
                 break;
@@ -183,7 +187,7 @@ impl Planner {
     }
 
     /// Largest entry speed of a segment whose exit may be at most `v_exit`.
-    fn entry_limit(&self, e: &Entry, v_exit: f64) -> f64 {
+    fn entry_limit(&self, e: &Entry, v_exit: f64, may_stop: bool) -> f64 {
         let cap = e.v_in_cap;
         if cap <= v_exit || e.block.constant_speed {
             return cap.min(v_exit);
@@ -191,7 +195,11 @@ impl Planner {
         let length = e.block.segment.length();
         let lim = &e.block.limits;
         let slow_to_next = feed::max_entry(self.kind, length, v_exit, lim);
-        cap.min(slow_to_next.max(e.v_in_stop))
+        if may_stop {
+            cap.min(slow_to_next.max(e.v_in_stop))
+        } else {
+            cap.min(slow_to_next)
+        }
     }
 
     /// Forward pass for the front segment: decide its exit, plan its profile, emit it.
@@ -283,7 +291,7 @@ mod tests {
         let mut planner = Planner::new(kind, window);
         let mut out = VecDeque::new();
         for b in blocks {
-            planner.push(*b, &mut out);
+            planner.push(b.clone(), &mut out);
         }
         planner.finish(&mut out);
         out.into_iter().collect()

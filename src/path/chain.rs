@@ -1,0 +1,142 @@
+//! A chain: pieces of lines, arcs and quintic Hermite curves joined with continuous first and
+//! second derivative (C2 in the common parameter u), run by one feed profile. Inside a chain the
+//! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
+//! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
+
+use super::{arc::Arc, hermite::Hermite, line::Line, Geo};
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// The curve a piece is cut from, each evaluated in its own parameter (arc length for lines and
+/// arcs, u ≈ arc length for Hermite curves).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Curve {
+    Line(Line),
+    Arc(Arc),
+    Hermite(Hermite),
+}
+
+impl Curve {
+    pub fn length(&self) -> f64 {
+        match self {
+            Curve::Line(l) => l.length(),
+            Curve::Arc(a) => a.length(),
+            Curve::Hermite(h) => h.length(),
+        }
+    }
+    pub fn eval(&self, u: f64) -> Geo {
+        match self {
+            Curve::Line(l) => l.eval(u),
+            Curve::Arc(a) => a.eval(u),
+            Curve::Hermite(h) => h.eval(u),
+        }
+    }
+    pub fn end(&self) -> Vec3 {
+        match self {
+            Curve::Line(l) => l.end,
+            Curve::Arc(a) => a.end,
+            Curve::Hermite(h) => h.end,
+        }
+    }
+    /// Guaranteed bound of |p'| (1 on lines and arcs: they are run in arc length).
+    pub fn speed_bound(&self) -> f64 {
+        match self {
+            Curve::Hermite(h) => h.speed_bound(),
+            _ => 1.0,
+        }
+    }
+    /// Guaranteed per-axis bounds of |p'|, |p''|, |p'''| over the whole curve.
+    pub fn derivative_bounds(&self) -> [Vec3; 3] {
+        match self {
+            Curve::Line(l) => {
+                let d = l.direction();
+                [[d[0].abs(), d[1].abs(), d[2].abs()], [0.0; 3], [0.0; 3]]
+            }
+            Curve::Arc(a) => a.derivative_bounds(),
+            Curve::Hermite(h) => h.derivative_bounds(),
+        }
+    }
+}
+
+/// The range [u0, u1] of a curve, from program line `line`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Piece {
+    pub curve: Curve,
+    pub u0: f64,
+    pub u1: f64,
+    pub line: u32,
+}
+
+impl Piece {
+    pub fn whole(curve: Curve, line: u32) -> Piece {
+        Piece {
+            curve,
+            u0: 0.0,
+            u1: curve.length(),
+            line,
+        }
+    }
+    pub fn length(&self) -> f64 {
+        self.u1 - self.u0
+    }
+    /// Point and derivatives at u ∈ [0, length]; the end of an uncut curve is exact.
+    pub fn eval(&self, u: f64) -> Geo {
+        let u = (self.u0 + u).min(self.u1);
+        self.curve.eval(u)
+    }
+    pub fn start(&self) -> Vec3 {
+        self.eval(0.0).p
+    }
+    pub fn end(&self) -> Vec3 {
+        if self.u1 >= self.curve.length() {
+            self.curve.end()
+        } else {
+            self.curve.eval(self.u1).p
+        }
+    }
+}
+
+/// Pieces back to back; `starts[k]` is the chain parameter where piece k begins.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Chain {
+    pub pieces: Vec<Piece>,
+    starts: Vec<f64>,
+    length: f64,
+}
+
+impl Chain {
+    pub fn push(&mut self, piece: Piece) {
+        self.starts.push(self.length);
+        self.length += piece.length();
+        self.pieces.push(piece);
+    }
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+    pub fn is_empty(&self) -> bool {
+        self.pieces.is_empty()
+    }
+    fn index(&self, s: f64) -> usize {
+        self.starts.partition_point(|&x| x <= s).saturating_sub(1)
+    }
+    pub fn eval(&self, s: f64) -> Geo {
+        if s >= self.length {
+            let last = self.pieces.last().expect("chains are never empty");
+            let mut g = last.eval(last.length());
+            g.p = last.end();
+            return g;
+        }
+        let k = self.index(s);
+        self.pieces[k].eval(s - self.starts[k])
+    }
+    pub fn start(&self) -> Vec3 {
+        self.pieces[0].start()
+    }
+    pub fn end(&self) -> Vec3 {
+        self.pieces.last().expect("chains are never empty").end()
+    }
+    /// Program line of the piece at s.
+    pub fn line_at(&self, s: f64) -> u32 {
+        self.pieces[self.index(s.min(self.length))].line
+    }
+}

@@ -1,0 +1,295 @@
+//! Quintic Hermite curve: the G2 transition of the `smooth` corner mode and the spline span
+//! through smooth micro-segment vertices. It matches position, first and second derivative at
+//! both ends, so joining it to lines, arcs and other spans keeps the axis acceleration continuous.
+//! With the seed-004 boundary data (lines on both sides, zero curvature, λ = 2L) it is exactly
+//! the transition of eq. 45–52.
+//!
+//! The curve is parameterised by u ∈ [0, λ] with |dp/du| = 1 at both ends (λ ≈ arc length),
+//! and evaluated in u: the planner runs the feed law in u and the chain rule uses p', p'', p'''
+//! w.r.t. u, so no arc-length inversion is needed and the derivative bounds are polynomial bounds.
+
+use super::{add, norm, scale, sub, Geo};
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// Sub-intervals of the Taylor bound (guaranteed for any number; more is tighter).
+const BOUND_PIECES: usize = 8;
+
+/// p(u) = start + Σ_{k=1..5} c_k·u^k for u ∈ [0, lambda]; p(lambda) is `end` exactly.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Hermite {
+    pub start: Vec3,
+    pub end: Vec3,
+    pub lambda: f64,
+    /// Power coefficients in u, c[0] for u¹ … c[4] for u⁵.
+    c: [Vec3; 5],
+}
+
+/// End data of a curve piece: point, first and second derivative w.r.t. its parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Jet {
+    pub p: Vec3,
+    pub d1: Vec3,
+    pub d2: Vec3,
+}
+
+impl Hermite {
+    /// The quintic with jet `a` at u = 0 and jet `b` at u = `lambda` (derivatives w.r.t. u).
+    pub fn new(a: Jet, b: Jet, lambda: f64) -> Hermite {
+        let l = lambda;
+        // In τ = u/λ: M = λ·p', A = λ²·p'' at both ends (standard quintic Hermite basis).
+        let d = sub(b.p, a.p);
+        let (m0, m1) = (scale(a.d1, l), scale(b.d1, l));
+        let (a0, a1) = (scale(a.d2, l * l), scale(b.d2, l * l));
+        let comb = |kd: f64, km0: f64, ka0: f64, ka1: f64, km1: f64| -> Vec3 {
+            let mut r = [0.0; 3];
+            for i in 0..3 {
+                r[i] = kd * d[i] + km0 * m0[i] + ka0 * a0[i] + ka1 * a1[i] + km1 * m1[i];
+            }
+            r
+        };
+        let t3 = comb(10.0, -6.0, -1.5, 0.5, -4.0);
+        let t4 = comb(-15.0, 8.0, 1.5, -1.0, 7.0);
+        let t5 = comb(6.0, -3.0, -0.5, 0.5, -3.0);
+        let tau = [m0, scale(a0, 0.5), t3, t4, t5];
+        let mut c = [[0.0; 3]; 5];
+        let mut lk = 1.0;
+        for k in 0..5 {
+            lk *= l;
+            c[k] = scale(tau[k], 1.0 / lk);
+        }
+        Hermite {
+            start: a.p,
+            end: b.p,
+            lambda,
+            c,
+        }
+    }
+
+    pub fn length(&self) -> f64 {
+        self.lambda
+    }
+
+    /// p − start and its first three derivatives at u.
+    fn poly(&self, u: f64) -> [Vec3; 4] {
+        let c = &self.c;
+        let mut out = [[0.0; 3]; 4];
+        for i in 0..3 {
+            let (c1, c2, c3, c4, c5) = (c[0][i], c[1][i], c[2][i], c[3][i], c[4][i]);
+            out[0][i] = u * (c1 + u * (c2 + u * (c3 + u * (c4 + u * c5))));
+            out[1][i] = c1 + u * (2.0 * c2 + u * (3.0 * c3 + u * (4.0 * c4 + u * 5.0 * c5)));
+            out[2][i] = 2.0 * c2 + u * (6.0 * c3 + u * (12.0 * c4 + u * 20.0 * c5));
+            out[3][i] = 6.0 * c3 + u * (24.0 * c4 + u * 60.0 * c5);
+        }
+        out
+    }
+
+    /// Point and derivatives w.r.t. u (clamped to [0, λ]; the end point is exact).
+    pub fn eval(&self, u: f64) -> Geo {
+        let u = u.clamp(0.0, self.lambda);
+        let [p, d1, d2, d3] = self.poly(u);
+        Geo {
+            p: if u >= self.lambda {
+                self.end
+            } else {
+                add(self.start, p)
+            },
+            d1,
+            d2,
+            d3,
+        }
+    }
+
+    pub fn jet(&self, u: f64) -> Jet {
+        let g = self.eval(u);
+        Jet {
+            p: g.p,
+            d1: g.d1,
+            d2: g.d2,
+        }
+    }
+
+    /// Guaranteed bounds per axis of |p'|, |p''|, |p'''| over [0, λ]: on each sub-interval
+    /// [m − r, m + r] the Taylor expansion of a polynomial is exact, so
+    /// |q^(n)(m + t)| ≤ Σ_k |q^(n+k)(m)|·r^k/k! (no sampling; rounding is below 1e-15 relative).
+    pub fn derivative_bounds(&self) -> [Vec3; 3] {
+        let mut b = [[0.0f64; 3]; 3];
+        let r = 0.5 * self.lambda / BOUND_PIECES as f64;
+        for piece in 0..BOUND_PIECES {
+            let m = (2 * piece + 1) as f64 * r;
+            for i in 0..3 {
+                // q^(n)(m) for n = 1..5.
+                let c: [f64; 5] = std::array::from_fn(|k| self.c[k][i]);
+                let q = [
+                    c[0] + m * (2.0 * c[1] + m * (3.0 * c[2] + m * (4.0 * c[3] + m * 5.0 * c[4]))),
+                    2.0 * c[1] + m * (6.0 * c[2] + m * (12.0 * c[3] + m * 20.0 * c[4])),
+                    6.0 * c[2] + m * (24.0 * c[3] + m * 60.0 * c[4]),
+                    24.0 * c[3] + m * 120.0 * c[4],
+                    120.0 * c[4],
+                ];
+                for (n, bound) in b.iter_mut().enumerate() {
+                    let mut sum = 0.0;
+                    let mut rk = 1.0;
+                    for k in 0..(5 - n) {
+                        sum += q[n + k].abs() * rk;
+                        rk *= r / (k + 1) as f64;
+                    }
+                    // Relative guard for the rounding of the sums above.
+                    bound[i] = bound[i].max(sum * (1.0 + 1e-12));
+                }
+            }
+        }
+        b
+    }
+
+    /// Guaranteed bound of the parameter speed |p'| over [0, λ] (Taylor, as above, with vector
+    /// norms).
+    pub fn speed_bound(&self) -> f64 {
+        let r = 0.5 * self.lambda / BOUND_PIECES as f64;
+        let mut bound: f64 = 0.0;
+        for piece in 0..BOUND_PIECES {
+            let m = (2 * piece + 1) as f64 * r;
+            let [_, d1, d2, d3] = self.poly(m);
+            let d4: Vec3 = std::array::from_fn(|i| 24.0 * self.c[3][i] + m * 120.0 * self.c[4][i]);
+            let d5: Vec3 = std::array::from_fn(|i| 120.0 * self.c[4][i]);
+            let sum = norm(d1)
+                + norm(d2) * r
+                + norm(d3) * r * r / 2.0
+                + norm(d4) * r.powi(3) / 6.0
+                + norm(d5) * r.powi(4) / 24.0;
+            bound = bound.max(sum * (1.0 + 1e-12));
+        }
+        bound
+    }
+
+    /// Bézier control points (τ-form): the curve lies in their convex hull.
+    pub fn control_points(&self) -> [Vec3; 6] {
+        let l = self.lambda;
+        let a = self.jet(0.0);
+        let b = self.jet(l);
+        let (m0, m1) = (scale(a.d1, l), scale(b.d1, l));
+        let (a0, a1) = (scale(a.d2, l * l), scale(b.d2, l * l));
+        [
+            a.p,
+            add(a.p, scale(m0, 0.2)),
+            add(add(a.p, scale(m0, 0.4)), scale(a0, 0.05)),
+            add(sub(b.p, scale(m1, 0.4)), scale(a1, 0.05)),
+            sub(b.p, scale(m1, 0.2)),
+            b.p,
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::path::Blend;
+
+    const MM: f64 = 1e-3;
+
+    fn line_jet(p: Vec3, d: Vec3) -> Jet {
+        Jet {
+            p,
+            d1: d,
+            d2: [0.0; 3],
+        }
+    }
+
+    #[test]
+    fn seed004_transition_is_the_special_case() {
+        // Lines on both sides, zero curvature, λ = 2L: the curve of eq. 45–52 (blend.rs).
+        let th = 70f64.to_radians();
+        let (d_in, d_out) = ([1.0, 0.0, 0.0], [th.cos(), th.sin(), 0.0]);
+        let blend = Blend::new([0.0; 3], d_in, d_out, 0.3 * MM);
+        let h = Hermite::new(
+            line_jet(blend.start(), d_in),
+            line_jet(blend.end(), d_out),
+            0.6 * MM,
+        );
+        // Same apex (eq. 52) at τ = ½.
+        assert!(norm(sub(h.eval(0.3 * MM).p, blend.apex())) < 1e-18);
+        assert_eq!(h.eval(h.length()).p, blend.end());
+    }
+
+    #[test]
+    fn end_jets_are_met() {
+        let a = Jet {
+            p: [0.0, 0.0, 0.0],
+            d1: [0.6, 0.8, 0.0],
+            d2: [-80.0, 60.0, 5.0],
+        };
+        let b = Jet {
+            p: [1e-3, 2e-3, 1e-4],
+            d1: [0.0, 1.0, 0.0],
+            d2: [-100.0, 0.0, 0.0],
+        };
+        let h = Hermite::new(a, b, 2.5e-3);
+        for (want, got) in [(a, h.jet(0.0)), (b, h.jet(h.length()))] {
+            assert!(norm(sub(want.p, got.p)) < 1e-18);
+            assert!(norm(sub(want.d1, got.d1)) < 1e-12);
+            assert!(norm(sub(want.d2, got.d2)) < 1e-8);
+        }
+    }
+
+    #[test]
+    fn bounds_hold_and_are_tight() {
+        // Against a dense evaluation: never below it, at most 25 % above it on this curve.
+        let a = Jet {
+            p: [0.0; 3],
+            d1: [1.0, 0.0, 0.0],
+            d2: [0.0, 30.0, 0.0],
+        };
+        let b = Jet {
+            p: [1e-3, 1e-3, 0.0],
+            d1: [0.0, 1.0, 0.0],
+            d2: [-20.0, 0.0, 0.0],
+        };
+        let h = Hermite::new(a, b, 1.6e-3);
+        let bounds = h.derivative_bounds();
+        let mut seen = [[0.0f64; 3]; 3];
+        for k in 0..=20_000 {
+            let g = h.eval(h.length() * k as f64 / 20_000.0);
+            for (s, d) in seen.iter_mut().zip([g.d1, g.d2, g.d3]) {
+                for i in 0..3 {
+                    s[i] = s[i].max(d[i].abs());
+                }
+            }
+        }
+        for n in 0..3 {
+            for i in 0..2 {
+                assert!(bounds[n][i] >= seen[n][i], "n {n} axis {i}");
+                assert!(
+                    bounds[n][i] <= 1.25 * seen[n][i] + 1e-9,
+                    "n {n} axis {i}: {} vs {}",
+                    bounds[n][i],
+                    seen[n][i]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn control_points_reproduce_the_curve() {
+        let a = Jet {
+            p: [0.0; 3],
+            d1: [1.0, 0.0, 0.0],
+            d2: [0.0, 10.0, 0.0],
+        };
+        let b = Jet {
+            p: [2e-3, 1e-4, 0.0],
+            d1: [0.99, 0.1, 0.0],
+            d2: [0.0, 5.0, 0.0],
+        };
+        let h = Hermite::new(a, b, 2e-3);
+        let cp = h.control_points();
+        // Bernstein form at τ = 0.3 equals the power form.
+        let t: f64 = 0.3;
+        let binom = [1.0, 5.0, 10.0, 10.0, 5.0, 1.0];
+        let mut p = [0.0; 3];
+        for k in 0..6 {
+            let w = binom[k] * t.powi(k as i32) * (1.0 - t).powi(5 - k as i32);
+            p = add(p, scale(cp[k], w));
+        }
+        assert!(norm(sub(p, h.eval(0.3 * h.length()).p)) < 1e-17);
+    }
+}

@@ -1,0 +1,595 @@
+//! The `smooth` corner mode: every junction blended inside the path tolerance, runs of short
+//! segments smoothed as one curve, and the result grouped into chains that one feed profile runs.
+//!
+//! Three streaming stages, each holding back at most one item:
+//! 1. Vertices → spans. A vertex between two short G1 lines that turn gently is *smooth*: the
+//!    circle through it and its two neighbours gives its tangent and curvature, and the span
+//!    between two such vertices is the quintic Hermite matching both (a compressor in the manner
+//!    of the 840D's COMPCURV, but interpolating the programmed points). A span is kept only if
+//!    its Bézier control points — hence the whole span — lie within half the tolerance of its
+//!    programmed chord; otherwise it stays the programmed line.
+//! 2. Junctions. Where two spans do not already join with equal first and second derivatives,
+//!    both are cut back by d and a quintic Hermite transition (hermite.rs; eq. 45–52 for two
+//!    lines) joins them: d from the apex distance of eq. 52 at the tolerance, at most half of
+//!    each programmed span, halved until the transition stays within the tolerance of the
+//!    programmed geometry. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the
+//!    program's stops stop the path.
+//! 3. Chains. Consecutive pieces of similar speed class join one chain (chain.rs); its limits
+//!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
+//!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
+
+use super::chain::{Chain, Curve, Piece};
+use super::corner::REVERSAL_COS;
+use super::hermite::{Hermite, Jet};
+use super::{
+    add, cross, curve_limits, dot, line_limits, norm, scale, sub, unit, Arc, Line, PathBlock, Segment, Shares,
+};
+use crate::config::Machine;
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// Largest turning angle at a smooth vertex (cos), and longest segment smoothed.
+const SMOOTH_MIN_COS: f64 = 0.866_025_403_784_438_6; // 30°
+const SMOOTH_MAX_SEGMENT: f64 = 5e-3;
+/// Neighbouring segments of a smooth vertex differ in length by at most this factor.
+const SMOOTH_MAX_RATIO: f64 = 4.0;
+/// Pieces joined with first derivatives this close and second derivatives this close (1/m)
+/// need no transition.
+const JOINT_D1_EPS: f64 = 1e-9;
+const JOINT_D2_EPS: f64 = 1e-3;
+/// Halvings of a transition's cut before the junction stops instead.
+const MAX_HALVINGS: usize = 40;
+/// Samples of a transition checked against the programmed geometry.
+const DEVIATION_SAMPLES: usize = 16;
+/// Share of the tolerance a fitted span may use: a span that needs all of it fits badly (its
+/// curvature swings), and splitting it is faster to run.
+const SPAN_SHARE: f64 = 0.7;
+/// Parts of each chord's range whose control points are checked.
+const CHECK_PIECES: usize = 4;
+/// Knot spacing of the fitted spans (m): long enough that rounding of the programmed points
+/// does not show as jerk, short enough to follow curvature.
+const KNOT_LENGTH: f64 = 1e-3;
+/// Moves held at most in one run before its spans are fitted.
+const RUN_MAX: usize = 1024;
+/// Pieces at most in one chain, and the speed ratio within which pieces share a chain.
+const CHAIN_MAX_PIECES: usize = 512;
+const CHAIN_SPEED_RATIO: f64 = 0.8;
+/// Budget split on chains: all the free acceleration where curvature leaves it, and a small
+/// tangential share kept where it does not (a sharp transition is short: its speed matters more
+/// than the rate of change of speed inside it).
+const CHAIN_SHARES: Shares = Shares {
+    a_cap: 1.0,
+    tangential: 0.005,
+};
+/// Shorter pieces are dropped (m).
+const MIN_PIECE: f64 = 1e-12;
+
+/// A programmed move as the builder receives it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Move {
+    pub source: Source,
+    pub line: u32,
+    pub feed: f64,
+    /// Path tolerance at the junction after this move (G64 P or the machine's).
+    pub tolerance: f64,
+    /// G61 on this move: stop at both its ends.
+    pub exact: bool,
+}
+
+/// Programmed geometry: what ticks are measured against.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Source {
+    Line(Line),
+    Arc(Arc),
+}
+
+impl Source {
+    fn length(&self) -> f64 {
+        match self {
+            Source::Line(l) => l.length(),
+            Source::Arc(a) => a.length(),
+        }
+    }
+    /// Distance from p to this line segment or arc.
+    pub fn distance(&self, p: Vec3) -> f64 {
+        match self {
+            Source::Line(l) => distance_to_segment(p, l.start, l.end),
+            Source::Arc(a) => distance_to_arc(p, a),
+        }
+    }
+}
+
+pub fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f64 {
+    let ab = sub(b, a);
+    let len2 = dot(ab, ab);
+    let t = if len2 > 0.0 {
+        (dot(sub(p, a), ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    norm(sub(p, add(a, scale(ab, t))))
+}
+
+fn distance_to_arc(p: Vec3, a: &Arc) -> f64 {
+    let rel = sub(p, a.center);
+    let (x, y, z) = (dot(rel, a.e1), dot(rel, a.e2), dot(rel, a.axis));
+    let phi = y.atan2(x).rem_euclid(std::f64::consts::TAU);
+    let h = a.rise / a.sweep;
+    let mut best = norm(sub(p, a.start)).min(norm(sub(p, a.end)));
+    let turns = (a.sweep / std::f64::consts::TAU).floor() as usize;
+    for k in 0..=turns.min(64) {
+        let f = phi + std::f64::consts::TAU * k as f64;
+        if f <= a.sweep {
+            let radial = x.hypot(y) - a.radius;
+            best = best.min(radial.hypot(z - h * f));
+        }
+    }
+    best
+}
+
+/// A vertex's tangent and curvature when it is smooth.
+type VertexJet = Option<(Vec3, Vec3)>;
+
+/// Tangent and curvature vector at `b` of the circle through a, b, c (travelled a → b → c).
+fn circle_jet(a: Vec3, b: Vec3, c: Vec3) -> (Vec3, Vec3) {
+    let (u, w) = (sub(a, b), sub(c, b));
+    let n = cross(u, w);
+    let n2 = dot(n, n);
+    let chord = sub(c, a);
+    if n2 <= 1e-30 * dot(u, u) * dot(w, w) {
+        return (unit(chord), [0.0; 3]);
+    }
+    // Circumcentre relative to b: ((|u|²·w − |w|²·u) × n) / (2|n|²).
+    let o = scale(cross(sub(scale(w, dot(u, u)), scale(u, dot(w, w))), n), 0.5 / n2);
+    let k = scale(o, 1.0 / dot(o, o));
+    let on = unit(o);
+    let t = unit(sub(chord, scale(on, dot(chord, on))));
+    (t, k)
+}
+
+/// Jet at the end point `a` of the circle through a, b, c (travelled from a towards b; with
+/// `reverse`, arriving at a from b).
+fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
+    let (t_mid, k_mid) = circle_jet(a, b, c);
+    let toward = if reverse { sub(a, b) } else { sub(b, a) };
+    if dot(k_mid, k_mid) == 0.0 {
+        return (t_mid, k_mid);
+    }
+    let o = add(b, scale(k_mid, 1.0 / dot(k_mid, k_mid)));
+    let r = sub(o, a);
+    let k = scale(r, 1.0 / dot(r, r));
+    let rn = unit(r);
+    (unit(sub(toward, scale(rn, dot(toward, rn)))), k)
+}
+
+/// A span on its way through stage 2: the piece left of it and the programmed moves at its ends.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+struct Span {
+    piece: Piece,
+    first: Move,
+    last: Move,
+}
+
+impl Span {
+    fn single(curve: Curve, mv: Move) -> Span {
+        Span {
+            piece: Piece::whole(curve, mv.line),
+            first: mv,
+            last: mv,
+        }
+    }
+}
+
+/// The smooth-mode builder (see the module comment).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SmoothBuilder {
+    /// Stage 1: the run of moves whose inner vertices are smooth, and the jet at its first vertex
+    /// (None: a corner, or the start).
+    run: Vec<Move>,
+    run_jet: VertexJet,
+    /// Stage 2: the span waiting for its junction with the next.
+    held: Option<Span>,
+    /// Stage 3: the chain being filled, its merged bounds, feed and speed class.
+    chain: Chain,
+    bounds: [Vec3; 3],
+    chain_feed: f64,
+    chain_class: f64,
+    chain_straight: bool,
+    /// Largest |p'| over the chain: the feed in the chain parameter is the feed over it.
+    chain_sigma: f64,
+}
+
+impl SmoothBuilder {
+    pub fn new() -> SmoothBuilder {
+        SmoothBuilder {
+            run: Vec::new(),
+            run_jet: None,
+            held: None,
+            chain: Chain::default(),
+            bounds: [[0.0; 3]; 3],
+            chain_feed: 0.0,
+            chain_class: 0.0,
+            chain_straight: true,
+            chain_sigma: 1.0,
+        }
+    }
+
+    /// Take one programmed move.
+    pub fn push(&mut self, mv: Move, m: &Machine, out: &mut Vec<PathBlock>) {
+        if let Some(last) = self.run.last().copied() {
+            if smooth_vertex(&last, &mv) {
+                if self.run.len() >= RUN_MAX {
+                    self.flush_run(true, m, out);
+                }
+            } else {
+                self.flush_run(false, m, out);
+                if last.exact || mv.exact {
+                    self.flush_held(m, out);
+                }
+            }
+        }
+        self.run.push(mv);
+    }
+
+    /// Stop at the end of everything received (dwell, M0, program end).
+    pub fn stop(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
+        self.flush_run(false, m, out);
+        self.flush_held(m, out);
+    }
+
+    /// Stage 1: fit the run with Hermite spans between knots about `KNOT_LENGTH` apart; with
+    /// `keep_tail`, the last span stays in the run (its first knot's jet carried) for the moves
+    /// still to come.
+    fn flush_run(&mut self, keep_tail: bool, m: &Machine, out: &mut Vec<PathBlock>) {
+        let run = std::mem::take(&mut self.run);
+        let jet0 = self.run_jet.take();
+        let Some(first) = run.first().copied() else { return };
+        if run.len() == 1 && jet0.is_none() {
+            let curve = match first.source {
+                Source::Arc(a) => Curve::Arc(a),
+                Source::Line(l) => Curve::Line(l),
+            };
+            self.junction(Span::single(curve, first), m, out);
+            return;
+        }
+        let verts: Vec<Vec3> = std::iter::once(start_of(&first))
+            .chain(run.iter().map(end_of))
+            .collect();
+        let knots = choose_knots(&run);
+        let mut jets: Vec<VertexJet> = vec![None; knots.len()];
+        for j in 1..knots.len() - 1 {
+            jets[j] = Some(circle_jet(
+                verts[knots[j - 1]],
+                verts[knots[j]],
+                verts[knots[j + 1]],
+            ));
+        }
+        // The run's ends continue the circle through their three nearest knots (or vertices), so
+        // curvature does not fall to zero there; the transition to the neighbour takes over.
+        let n = knots.len();
+        let ends = if n >= 3 {
+            Some((
+                [knots[0], knots[1], knots[2]],
+                [knots[n - 1], knots[n - 2], knots[n - 3]],
+            ))
+        } else if run.len() >= 2 {
+            let mid = run.len() / 2;
+            Some(([0, mid, run.len()], [run.len(), mid, 0]))
+        } else {
+            None
+        };
+        if let Some((s, e)) = ends {
+            jets[0] = Some(circle_jet_at_end(verts[s[0]], verts[s[1]], verts[s[2]], false));
+            jets[n - 1] = Some(circle_jet_at_end(verts[e[0]], verts[e[1]], verts[e[2]], true));
+        }
+        if jet0.is_some() {
+            jets[0] = jet0;
+        }
+        let spans = if keep_tail && knots.len() >= 3 {
+            knots.len() - 2
+        } else {
+            knots.len() - 1
+        };
+        for j in 0..spans {
+            self.fit(&run[knots[j]..knots[j + 1]], jets[j], jets[j + 1], m, out);
+        }
+        if spans < knots.len() - 1 {
+            self.run = run[knots[spans]..].to_vec();
+            self.run_jet = jets[spans];
+        }
+    }
+
+    /// One Hermite span over `moves` from jet `a` to jet `b` if it stays within the tolerance
+    /// of every programmed chord (guaranteed by the control points of the curve over
+    /// each chord's parameter range); else split at the middle vertex, down to single lines.
+    fn fit(&mut self, moves: &[Move], a: VertexJet, b: VertexJet, m: &Machine, out: &mut Vec<PathBlock>) {
+        let (first, last) = (moves[0], moves[moves.len() - 1]);
+        let line_of = |mv: &Move| match mv.source {
+            Source::Line(l) => l,
+            Source::Arc(_) => unreachable!("runs of more than one move hold lines only"),
+        };
+        if moves.len() == 1 && a.is_none() && b.is_none() {
+            self.junction(Span::single(Curve::Line(line_of(&first)), first), m, out);
+            return;
+        }
+        let jet = |p: Vec3, v: VertexJet, mv: &Move| {
+            let (t, k) = v.unwrap_or((line_of(mv).direction(), [0.0; 3]));
+            Jet { p, d1: t, d2: k }
+        };
+        let lambda: f64 = moves.iter().map(|mv| mv.source.length()).sum();
+        let h = Hermite::new(
+            jet(start_of(&first), a, &first),
+            jet(end_of(&last), b, &last),
+            lambda,
+        );
+        let mut u = 0.0;
+        let mut inside = true;
+        for mv in moves {
+            let l = line_of(mv);
+            let ub = (u + l.length()).min(lambda);
+            // The curve over the chord's range, in `CHECK_PIECES` parts: each part lies in the
+            // hull of its control points, which come close to the curve as the parts shrink.
+            for k in 0..CHECK_PIECES {
+                let (u0, u1) = (
+                    u + (ub - u) * k as f64 / CHECK_PIECES as f64,
+                    u + (ub - u) * (k + 1) as f64 / CHECK_PIECES as f64,
+                );
+                let part = Hermite::new(h.jet(u0), h.jet(u1), u1 - u0);
+                inside &= part
+                    .control_points()
+                    .iter()
+                    .all(|&c| distance_to_segment(c, l.start, l.end) <= SPAN_SHARE * mv.tolerance);
+            }
+            u = ub;
+        }
+        if inside {
+            let span = Span {
+                piece: Piece::whole(Curve::Hermite(h), first.line),
+                first,
+                last,
+            };
+            self.junction(span, m, out);
+        } else if moves.len() == 1 {
+            self.junction(Span::single(Curve::Line(line_of(&first)), first), m, out);
+        } else {
+            let mid = moves.len() / 2;
+            let v = |i: usize| {
+                if i == 0 {
+                    start_of(&moves[0])
+                } else {
+                    end_of(&moves[i - 1])
+                }
+            };
+            let jm = Some(circle_jet(v(0), v(mid), v(moves.len())));
+            self.fit(&moves[..mid], a, jm, m, out);
+            self.fit(&moves[mid..], jm, b, m, out);
+        }
+    }
+
+    /// Stage 2: join `next` to the held span.
+    fn junction(&mut self, mut next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
+        let Some(mut held) = self.held.take() else {
+            self.held = Some(next);
+            return;
+        };
+        let a = jet_at(&held.piece, held.piece.length());
+        let b = jet_at(&next.piece, 0.0);
+        let joined = norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS;
+        if joined {
+            self.piece(held.piece, held.last.feed, false, m, out);
+            self.held = Some(next);
+            return;
+        }
+        match transition(&held, &next) {
+            Some((d_held, d_next, h)) => {
+                held.piece.u1 -= d_held;
+                next.piece.u0 += d_next;
+                self.piece(held.piece, held.last.feed, false, m, out);
+                let feed = held.last.feed.min(next.first.feed);
+                self.piece(
+                    Piece::whole(Curve::Hermite(h), held.last.line),
+                    feed,
+                    false,
+                    m,
+                    out,
+                );
+                self.held = Some(next);
+            }
+            None => {
+                self.piece(held.piece, held.last.feed, true, m, out);
+                self.held = Some(next);
+            }
+        }
+    }
+
+    fn flush_held(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
+        if let Some(held) = self.held.take() {
+            self.piece(held.piece, held.last.feed, true, m, out);
+        }
+        self.close_chain(0.0, m, out);
+    }
+
+    /// Stage 3: add a piece to the chain; `stop` after it.
+    fn piece(&mut self, piece: Piece, feed: f64, stop: bool, m: &Machine, out: &mut Vec<PathBlock>) {
+        if piece.length() > MIN_PIECE {
+            let b = piece.curve.derivative_bounds();
+            let straight = matches!(piece.curve, Curve::Line(_));
+            let sigma = piece.curve.speed_bound().max(1.0);
+            // The speed class is the piece's own v_max with its tangential budget, so a chain
+            // never runs slower than its slowest piece would alone (by more than the ratio).
+            let class = if straight {
+                super::constant_speed_limit(&b, m).min(feed / sigma)
+            } else {
+                let k = norm(b[1]);
+                let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
+                curve_limits(&b, rho, feed / sigma, m, CHAIN_SHARES).v_max
+            };
+            let fits = !self.chain.is_empty()
+                && feed == self.chain_feed
+                && straight == self.chain_straight
+                && self.chain.pieces.len() < CHAIN_MAX_PIECES
+                && class >= CHAIN_SPEED_RATIO * self.chain_class
+                && self.chain_class >= CHAIN_SPEED_RATIO * class;
+            if !fits {
+                self.close_chain(f64::INFINITY, m, out);
+                self.chain_feed = feed;
+                self.chain_class = class;
+                self.chain_straight = straight;
+                self.bounds = [[0.0; 3]; 3];
+                self.chain_sigma = 1.0;
+            }
+            self.chain_sigma = self.chain_sigma.max(sigma);
+            self.chain_class = self.chain_class.min(class);
+            for (acc, new) in self.bounds.iter_mut().zip(b) {
+                for i in 0..3 {
+                    acc[i] = acc[i].max(new[i]);
+                }
+            }
+            self.chain.push(piece);
+        }
+        if stop {
+            self.close_chain(0.0, m, out);
+        }
+    }
+
+    fn close_chain(&mut self, v_end_max: f64, m: &Machine, out: &mut Vec<PathBlock>) {
+        if self.chain.is_empty() {
+            return;
+        }
+        let chain = std::mem::take(&mut self.chain);
+        let first = chain.pieces[0];
+        let (segment, limits, sigma) = match (chain.pieces.len(), first.curve) {
+            (1, Curve::Line(_)) => {
+                let line = Line {
+                    start: first.start(),
+                    end: first.end(),
+                };
+                (Segment::Line(line), line_limits(line.direction(), m), 1.0)
+            }
+            _ => {
+                let b = &self.bounds;
+                let k = norm(b[1]);
+                let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
+                let v_cap = self.chain_feed / self.chain_sigma;
+                let limits = curve_limits(b, rho, v_cap, m, CHAIN_SHARES);
+                (Segment::Chain(chain), limits, self.chain_sigma)
+            }
+        };
+        out.push(PathBlock {
+            line: first.line,
+            segment,
+            v_feed: (self.chain_feed / sigma).max(0.0).min(limits.v_max),
+            limits,
+            // A C2 joint limits nothing beyond the chain's own v_max (kept finite: the state
+            // is serialised).
+            v_end_max: v_end_max.min(limits.v_max),
+            constant_speed: false,
+        });
+    }
+}
+
+impl Default for SmoothBuilder {
+    fn default() -> Self {
+        SmoothBuilder::new()
+    }
+}
+
+fn jet_at(piece: &Piece, u: f64) -> Jet {
+    let g = piece.eval(u);
+    Jet {
+        p: if u >= piece.length() { piece.end() } else { g.p },
+        d1: g.d1,
+        d2: g.d2,
+    }
+}
+
+/// The vertex between two moves is smooth: two short line moves of one feed and similar
+/// length that turn gently.
+fn smooth_vertex(prev: &Move, next: &Move) -> bool {
+    let (Source::Line(a), Source::Line(b)) = (prev.source, next.source) else {
+        return false;
+    };
+    let (la, lb) = (a.length(), b.length());
+    let cos = dot(a.direction(), b.direction());
+    !(prev.exact
+        || next.exact
+        || prev.feed != next.feed
+        || la > SMOOTH_MAX_SEGMENT
+        || lb > SMOOTH_MAX_SEGMENT
+        || la > SMOOTH_MAX_RATIO * lb
+        || lb > SMOOTH_MAX_RATIO * la
+        || cos < SMOOTH_MIN_COS)
+}
+
+fn start_of(mv: &Move) -> Vec3 {
+    match mv.source {
+        Source::Line(l) => l.start,
+        Source::Arc(a) => a.start,
+    }
+}
+
+fn end_of(mv: &Move) -> Vec3 {
+    match mv.source {
+        Source::Line(l) => l.end,
+        Source::Arc(a) => a.end,
+    }
+}
+
+/// Knot indices into the run's vertices (0 … moves): about `KNOT_LENGTH` apart in length.
+fn choose_knots(run: &[Move]) -> Vec<usize> {
+    let total: f64 = run.iter().map(|mv| mv.source.length()).sum();
+    let spans = ((total / KNOT_LENGTH).round() as usize).clamp(1, run.len());
+    let mut knots = vec![0];
+    let mut acc = 0.0;
+    for (i, mv) in run.iter().enumerate() {
+        acc += mv.source.length();
+        let next_target = total * knots.len() as f64 / spans as f64;
+        if i + 1 < run.len() && acc >= next_target * (1.0 - 1e-9) {
+            knots.push(i + 1);
+        }
+    }
+    knots.push(run.len());
+    knots
+}
+
+/// The transition between `held` and `next`: the cuts on both sides and the curve, or None
+/// (stop) at a reversal or when no cut keeps the tolerance.
+fn transition(held: &Span, next: &Span) -> Option<(f64, f64, Hermite)> {
+    let end = jet_at(&held.piece, held.piece.length());
+    let start = jet_at(&next.piece, 0.0);
+    let (t_in, t_out) = (unit(end.d1), unit(start.d1));
+    if dot(t_in, t_out) < REVERSAL_COS {
+        return None;
+    }
+    let tol = held.last.tolerance;
+    // Eq. 52: the apex of the line-line transition lies (3/16)·L·|t_out − t_in| from the corner.
+    let w = norm(sub(t_out, t_in));
+    let apex_cut = if w > 0.0 {
+        16.0 * tol / (3.0 * w)
+    } else {
+        f64::INFINITY
+    };
+    let mut d = apex_cut
+        .min(0.5 * held.last.source.length())
+        .min(0.5 * next.first.source.length())
+        .min(held.piece.length())
+        .min(next.piece.length());
+    for _ in 0..MAX_HALVINGS {
+        if d.is_nan() || d <= MIN_PIECE {
+            return None;
+        }
+        let a = jet_at(&held.piece, held.piece.length() - d);
+        let b = jet_at(&next.piece, d);
+        // Parameter speed 1 at both ends: λ is the cut length on both sides.
+        let h = Hermite::new(a, b, 2.0 * d);
+        let within = (1..DEVIATION_SAMPLES).all(|k| {
+            let p = h.eval(h.length() * k as f64 / DEVIATION_SAMPLES as f64).p;
+            held.last.source.distance(p).min(next.first.source.distance(p)) <= tol
+        });
+        if within {
+            return Some((d, d, h));
+        }
+        d *= 0.5;
+    }
+    None
+}
