@@ -2,7 +2,7 @@
 //! variables, generated from the same description as the XML (text escaped).
 
 use crate::xml::real;
-use crate::{ModelInfo, Value};
+use crate::{ModelInfo, Type, Value};
 use std::fmt::Write;
 
 /// Text as HTML (element content and attribute values).
@@ -43,15 +43,19 @@ pub fn html(info: &ModelInfo, intro_html: &str, starts: &[Option<Value>]) -> Str
     );
     for (v, start) in info.variables.iter().zip(starts) {
         let num = |x: Option<f64>| x.map(real).unwrap_or_default();
+        let kind = match v.kind {
+            Type::Enumeration(e) => format!("Enumeration {}", escape(&info.enumerations[e].name)),
+            k => format!("{k:?}"),
+        };
         let _ = writeln!(
             h,
-            "<tr><td><code>{}</code></td><td>{}</td><td>{:?}</td><td>{:?}</td><td>{:?}</td>\
+            "<tr><td><code>{}</code></td><td>{}</td><td>{:?}</td><td>{:?}</td><td>{}</td>\
              <td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(&v.name),
             v.value_reference,
             v.causality,
             v.variability,
-            v.kind,
+            kind,
             escape(v.unit.as_deref().unwrap_or("")),
             escape(v.display_unit.as_deref().unwrap_or("")),
             num(v.min),
