@@ -223,3 +223,36 @@ def test_declared_ranges_are_enforced(fmu):
     assert status_of(s.set, an_input(fmu).name, math.nan) == fmi2Error
     assert "is not finite" in s.log[-1][2]
     s.fmu.freeInstance()
+
+
+def _rss_kb():
+    with open("/proc/self/statm") as f:
+        import os
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") // 1024
+
+
+def test_instantiate_free_cycles_do_not_leak(fmu):
+    """1000 cycles of instantiate, initialize, 5 steps, an FMU state left unfreed, an fmi2Error,
+    fmi2FreeInstance on one loaded library: no crash, and the process does not grow
+    (FreeInstance frees the states it handed out)."""
+    s = fmusim.Slave(fmu, "cycles")
+    f = s.fmu
+
+    def cycle():
+        f.fmi2FreeInstance(f.component)
+        f.instantiate(callbacks=s._callbacks, loggingOn=False)
+        f.setupExperiment(startTime=0.0)
+        f.enterInitializationMode()
+        f.exitInitializationMode()
+        for k in range(5):
+            f.doStep(k * H, H)
+        f.getFMUstate()
+        assert status_of(f.doStep, 1.0, H) == fmi2Error
+    for _ in range(100):
+        cycle()
+    before = _rss_kb()
+    for _ in range(1000):
+        cycle()
+    grown = _rss_kb() - before
+    f.freeInstance()
+    assert grown < 1024, f"resident set grew by {grown} kB over 1000 cycles"
