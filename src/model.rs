@@ -10,7 +10,7 @@ use crate::servo::PARAMETERS as SERVO;
 use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
 use fmi2::Type::{Boolean as BOOL, Enumeration as ENUM, Integer as INT, Real as REAL, String as STR};
 use fmi2::Variability::{Continuous as CONT, Discrete as TICK, Fixed as FIX};
-use fmi2::{Causality, Type, Value, Variability, VariableInfo};
+use fmi2::{EnumerationType, Type, Value, VariableInfo};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -40,23 +40,13 @@ fn corner_doc(c: CornerMode) -> &'static str {
 
 /// The Enumeration types `Profile` and `Corner`: items (name, description) 1…n in the order of
 /// `ProfileKind::ALL` / `CornerMode::ALL`, so the XML follows the library's lists.
-pub fn enumerations() -> Vec<fmi2::EnumerationType> {
-    fn items<T: Copy>(
-        all: &[T],
-        name: fn(T) -> &'static str,
-        doc: fn(T) -> &'static str,
-    ) -> Vec<(String, String)> {
-        all.iter()
-            .map(|&k| (name(k).to_string(), doc(k).to_string()))
-            .collect()
-    }
-    let profile = items(&ProfileKind::ALL, ProfileKind::name, profile_doc);
-    let corner = items(&CornerMode::ALL, CornerMode::name, corner_doc);
-    let e = |name: &str, items| fmi2::EnumerationType {
-        name: name.into(),
-        items,
-    };
-    vec![e("Profile", profile), e("Corner", corner)]
+pub fn enumerations() -> Vec<EnumerationType> {
+    let profiles = ProfileKind::ALL.iter().map(|&k| (k.name(), profile_doc(k)));
+    let corners = CornerMode::ALL.iter().map(|&c| (c.name(), corner_doc(c)));
+    vec![
+        EnumerationType::new("Profile", profiles),
+        EnumerationType::new("Corner", corners),
+    ]
 }
 
 /// What a row reads or writes. `A` in a slot of the table is the axis, filled in per axis.
@@ -95,19 +85,9 @@ const A: usize = usize::MAX;
 const NO: Option<f64> = None;
 const ZERO: Option<f64> = Some(0.0);
 
-/// A row: name (`#` = x, y, z: one row per axis), type, causality, variability, unit ("": none),
-/// min, max, slot, description. Outputs depend on no input (inputs act from the next step on).
-type Row = (
-    &'static str,
-    Type,
-    Causality,
-    Variability,
-    &'static str,
-    Option<f64>,
-    Option<f64>,
-    Slot,
-    &'static str,
-);
+/// See [`fmi2::table::Row`]: `#` rows are per axis. Outputs depend on no input (inputs act from
+/// the next step on).
+type Row = fmi2::table::Row<Slot>;
 
 #[rustfmt::skip]
 pub const ROWS: &[Row] = &[
@@ -173,53 +153,23 @@ fn servo_type(fmi_name: &str) -> Type {
     }
 }
 
-fn variable(row: &Row, axis: &str) -> VariableInfo {
-    let &(name, kind, causality, variability, unit, min, max, _, desc) = row;
-    let mut v = VariableInfo::new(
-        name.replace('#', axis),
-        kind,
-        causality,
-        variability,
-        desc.replace('#', axis),
-    );
-    if !unit.is_empty() {
-        v = v.unit(unit);
-    }
-    if causality == OUT {
-        v = v.depends_on(vec![]);
-    }
-    // The Integer twins of the Enumerations range over the same items.
-    let max = match row.7 {
-        Slot::ProfileIndex => Some(ProfileKind::ALL.len() as f64),
-        Slot::CornerIndex => Some(CornerMode::ALL.len() as f64),
-        _ => max,
-    };
-    v.range(min, max)
+/// The table expanded (value references 1…n in this order); the servo row stands for every
+/// drive parameter of its axis.
+pub fn rows() -> Vec<(VariableInfo, Slot)> {
+    fmi2::table::expand(ROWS, &["x", "y", "z"], |row, i, axis| match row.7 {
+        Slot::Servo(..) => servo_rows(i, axis).collect(),
+        slot => vec![(variable(row, axis), slot.on_axis(i))],
+    })
 }
 
-/// The table expanded: a run of per-axis rows (`#`) once for x, then y, then z; the servo row
-/// once per drive parameter. Value references follow this order (1…n).
-pub fn rows() -> Vec<(VariableInfo, Slot)> {
-    let mut out = Vec::new();
-    let mut k = 0;
-    while k < ROWS.len() {
-        let run = ROWS[k..].iter().take_while(|r| r.0.contains('#')).count();
-        if run == 0 {
-            out.push((variable(&ROWS[k], ""), ROWS[k].7));
-            k += 1;
-            continue;
-        }
-        for (i, axis) in ["x", "y", "z"].iter().enumerate() {
-            for row in &ROWS[k..k + run] {
-                match row.7 {
-                    Slot::Servo(..) => out.extend(servo_rows(i, axis)),
-                    slot => out.push((variable(row, axis), slot.on_axis(i))),
-                }
-            }
-        }
-        k += run;
+fn variable(row: &Row, axis: &str) -> VariableInfo {
+    let v = fmi2::table::variable(row, axis);
+    // The Integer twins of the Enumerations range over the same items.
+    match row.7 {
+        Slot::ProfileIndex => v.range(Some(0.0), Some(ProfileKind::ALL.len() as f64)),
+        Slot::CornerIndex => v.range(Some(0.0), Some(CornerMode::ALL.len() as f64)),
+        _ => v,
     }
-    out
 }
 
 /// The drive parameters of one axis, from the servo's own table.

@@ -7,6 +7,7 @@ pub mod abi;
 pub mod doc;
 pub mod instance;
 pub mod package;
+pub mod table;
 pub mod units;
 pub mod uri;
 pub mod xml;
@@ -141,6 +142,20 @@ impl VariableInfo {
 pub struct EnumerationType {
     pub name: String,
     pub items: Vec<(String, String)>,
+}
+
+impl EnumerationType {
+    /// From items (name, description), values 1…n in the given order.
+    pub fn new<'a>(name: &str, items: impl IntoIterator<Item = (&'a str, &'a str)>) -> Self {
+        let items = items
+            .into_iter()
+            .map(|(n, d)| (n.to_string(), d.to_string()))
+            .collect();
+        EnumerationType {
+            name: name.into(),
+            items,
+        }
+    }
 }
 
 /// A display unit of an SI unit: value_display = factor · value + offset.

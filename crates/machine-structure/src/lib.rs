@@ -5,7 +5,9 @@
 
 pub mod modal;
 
-use fmi2::{Causality, ModelInfo, Type, Value, Variability, VariableInfo};
+use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
+use fmi2::Variability::{Continuous as CONT, Fixed as FIX};
+use fmi2::{ModelInfo, Type, Value, VariableInfo};
 use modal::{Mode, ModeState};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -71,7 +73,7 @@ impl MachineStructure {
     }
 }
 
-/// What a row of the table reads or writes.
+/// What a row of the table reads or writes: (axis, mode, field) or the axis.
 #[derive(Clone, Copy)]
 enum Slot {
     Mode(usize, usize, usize),
@@ -82,62 +84,51 @@ enum Slot {
     LoadForce(usize),
 }
 
-/// The table: one row per variable and what it reads or writes.
+const NO: Option<f64> = None;
+const ZERO: Option<f64> = Some(0.0);
+
+/// The variables, one row per axis each (see [`fmi2::table::Row`]).
+#[rustfmt::skip]
+const ROWS: &[fmi2::table::Row<Slot>] = &[
+    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 0, 0), "# mode 1: natural frequency"),
+    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 0, 1), "# mode 1: damping ratio"),
+    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 0, 2), "# mode 1: modal mass"),
+    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 1, 0), "# mode 2: natural frequency"),
+    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 1, 1), "# mode 2: damping ratio"),
+    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 1, 2), "# mode 2: modal mass"),
+    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Coupling(0),   "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
+    ("#.driveForce",      Type::Real, IN,  CONT, "N",    NO,   NO, Slot::Force(0),      "force of the # drive on the frame"),
+    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,   NO, Slot::Deflection(0), "tool-point deflection of the frame along #"),
+    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,   NO, Slot::Acceleration(0), "frame acceleration along # (direct feed-through of #.driveForce)"),
+    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,   NO, Slot::LoadForce(0),  "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
+];
+
+impl Slot {
+    fn on_axis(self, i: usize) -> Slot {
+        match self {
+            Slot::Mode(_, k, f) => Slot::Mode(i, k, f),
+            Slot::Coupling(_) => Slot::Coupling(i),
+            Slot::Force(_) => Slot::Force(i),
+            Slot::Deflection(_) => Slot::Deflection(i),
+            Slot::Acceleration(_) => Slot::Acceleration(i),
+            Slot::LoadForce(_) => Slot::LoadForce(i),
+        }
+    }
+}
+
+/// The table expanded; a = Σ (F/m − 2ζω q̇ − ω² q): each axis' acceleration depends directly on
+/// the drive force of the same axis, every other output on no input.
 fn table() -> &'static [(VariableInfo, Slot)] {
     static T: OnceLock<Vec<(VariableInfo, Slot)>> = OnceLock::new();
     T.get_or_init(|| {
-        use Causality::{Input, Output, Parameter};
-        use Variability::{Continuous, Fixed};
-        let row = |name: String, c, v, unit, desc: String| {
-            VariableInfo::new(name, Type::Real, c, v, desc).unit(unit)
-        };
-        let mut t = Vec::new();
-        for (i, a) in AXES.iter().enumerate() {
-            for k in 0..MODES {
-                let n = k + 1;
-                let modes = [
-                    ("frequency", "natural frequency", "Hz"),
-                    ("damping", "damping ratio", "1"),
-                    ("mass", "modal mass", "kg"),
-                ];
-                for (f, (field, what, unit)) in modes.into_iter().enumerate() {
-                    let v = row(
-                        format!("{a}.mode{n}.{field}"),
-                        Parameter,
-                        Fixed,
-                        unit,
-                        format!("{a} mode {n}: {what}"),
-                    );
-                    t.push((v.range(Some(0.0), None), Slot::Mode(i, k, f)));
-                }
-            }
-            let desc =
-                format!("mass riding on the frame along {a} (table); loadForce = −couplingMass·acceleration");
-            let v = row(format!("{a}.couplingMass"), Parameter, Fixed, "kg", desc);
-            t.push((v.range(Some(0.0), None), Slot::Coupling(i)));
-        }
-        let force0 = t.len();
-        for (i, a) in AXES.iter().enumerate() {
-            let desc = format!("force of the {a} drive on the frame");
-            t.push((
-                row(format!("{a}.driveForce"), Input, Continuous, "N", desc),
-                Slot::Force(i),
-            ));
-        }
-        for (i, a) in AXES.iter().enumerate() {
-            let desc = format!("tool-point deflection of the frame along {a}");
-            let v = row(format!("{a}.deflection"), Output, Continuous, "m", desc);
-            t.push((v.depends_on(vec![]), Slot::Deflection(i)));
-            // a = Σ (F/m − 2ζω q̇ − ω² q): the drive force of the same axis feeds through.
-            let desc = format!("frame acceleration along {a} (direct feed-through of {a}.driveForce)");
-            let v = row(format!("{a}.acceleration"), Output, Continuous, "m/s2", desc);
-            t.push((v.depends_on(vec![force0 + i]), Slot::Acceleration(i)));
-            let desc = format!(
-                "inertial force of the moving frame on the {a} table, −couplingMass·(modal acceleration \
-                 without the direct F/m term); to CncMotion {a}.loadForce"
-            );
-            let v = row(format!("{a}.loadForce"), Output, Continuous, "N", desc);
-            t.push((v.depends_on(vec![]), Slot::LoadForce(i)));
+        use fmi2::table::{expand, index_of, variable};
+        let mut t = expand(ROWS, &AXES, |row, i, axis| {
+            vec![(variable(row, axis), row.7.on_axis(i))]
+        });
+        for a in AXES {
+            let force = index_of(&t, &format!("{a}.driveForce"));
+            let acceleration = index_of(&t, &format!("{a}.acceleration")).expect("in the table");
+            t[acceleration].0.dependencies = force.map(|f| vec![f]);
         }
         t
     })
