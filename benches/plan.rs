@@ -82,7 +82,7 @@ fn bench(c: &mut Criterion) {
             planned + queue.len()
         })
     });
-    // Reader, path (a quintic corner transition at every junction) and look-ahead.
+    // Reader, path (smooth mode: spans fitted over the micro-segments, chains) and look-ahead.
     g.bench_function("read_path_plan_micro_segments_100k", |b| {
         b.iter(|| plan_program(&text, &machine))
     });
@@ -92,6 +92,44 @@ fn bench(c: &mut Criterion) {
     };
     g.bench_function("read_path_plan_exact_stop_100k", |b| {
         b.iter(|| plan_program(&text, &exact))
+    });
+    let polynomial = Machine {
+        corner: cnc_motion::config::CornerMode::Polynomial,
+        ..Machine::default()
+    };
+    g.bench_function("read_path_plan_polynomial_100k", |b| {
+        b.iter(|| plan_program(&text, &polynomial))
+    });
+    // The whole pipeline: reader → path → look-ahead → feed → interpolated ticks (no CSV).
+    g.bench_function("whole_pipeline_to_ticks_100k", |b| {
+        b.iter(|| {
+            let mut e = cnc_motion::engine::Engine::new(text.clone(), "bench.ngc", &machine).unwrap();
+            let mut ticks = 0u64;
+            while !e.finished() {
+                e.step().unwrap();
+                ticks += 1;
+            }
+            ticks
+        })
+    });
+    g.finish();
+    // One smooth-mode corner transition (a zig-zag of 5 mm lines: a corner at every vertex).
+    let corners = 10_000;
+    let mut zig = String::from("G21 G90 G64 F3000\n");
+    for i in 0..corners {
+        let y = if i % 2 == 0 { 1.0 } else { 0.0 };
+        writeln!(zig, "G1 X{:.4} Y{y:.4}", 5.0 * (i + 1) as f64).unwrap();
+    }
+    zig.push_str("M30\n");
+    let zig: Arc<str> = Arc::from(zig);
+    let mut g = c.benchmark_group("transition");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(corners as u64));
+    g.bench_function("smooth_corner_read_path_plan", |b| {
+        b.iter(|| plan_program(&zig, &machine))
+    });
+    g.bench_function("exact_stop_read_path_plan", |b| {
+        b.iter(|| plan_program(&zig, &exact))
     });
     g.finish();
 }

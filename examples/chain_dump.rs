@@ -18,7 +18,11 @@ fn main() {
         builder.push(&b, &mut segs);
     }
     builder.finish(&mut segs);
-    for s in segs.iter().take(12) {
+    for s in segs
+        .iter()
+        .skip(std::env::var("SKIP").map(|v| v.parse().unwrap()).unwrap_or(0))
+        .take(12)
+    {
         println!(
             "line {} len {:.5} mm feed {:.3} limits v {:.3} a {:.1} j {:.0} end_max {:.3}",
             s.line,

@@ -84,6 +84,9 @@ pub struct Machine {
     pub max_path_jerk: Option<f64>,
     /// Snap limit of the jerk15 law (m/s⁴).
     pub max_snap: f64,
+    /// Axis jerk allowed while passing a constant-speed corner transition (`polynomial` and
+    /// `circular` modes; seed 004 Table 1: 60 m/s³ on the 840D), m/s³; the axes' own when None.
+    pub max_transition_jerk: Option<f64>,
     pub axes: [AxisLimits; 3],
     pub servo: [ServoParams; 3],
 }
@@ -101,6 +104,7 @@ impl Default for Machine {
             max_path_acceleration: None,
             max_path_jerk: None,
             max_snap: 6.0e6 * 1e-3,
+            max_transition_jerk: None,
             axes: [AxisLimits::default(); 3],
             servo: [
                 ServoParams::default(),
@@ -150,6 +154,7 @@ pub struct MachineFile {
     pub max_path_acceleration_mm_s2: Option<f64>,
     pub max_path_jerk_mm_s3: Option<f64>,
     pub max_snap_mm_s4: Option<f64>,
+    pub max_transition_jerk_mm_s3: Option<f64>,
     pub axis: Option<AxesFile>,
     pub servo: Option<ServoFile>,
 }
@@ -198,6 +203,7 @@ impl Machine {
         if let Some(v) = f.max_snap_mm_s4 {
             m.max_snap = v * MM;
         }
+        m.max_transition_jerk = f.max_transition_jerk_mm_s3.map(|v| v * MM);
         if let Some(axes) = &f.axis {
             for (i, a) in [&axes.x, &axes.y, &axes.z].into_iter().enumerate() {
                 if let Some(a) = a {
@@ -249,6 +255,9 @@ impl Machine {
         }
         if let Some(v) = self.max_path_jerk {
             positive("max_path_jerk_mm_s3", v)?;
+        }
+        if let Some(v) = self.max_transition_jerk {
+            positive("max_transition_jerk_mm_s3", v)?;
         }
         for (axis, a) in ["x", "y", "z"].iter().zip(&self.axes) {
             positive(&format!("axis.{axis}.max_velocity_mm_min"), a.max_velocity)?;

@@ -21,13 +21,12 @@ const V: f64 = 0.25;
 const TOL: f64 = 0.01 * MM;
 
 fn machine() -> Machine {
-    let axis = AxisLimits {
-        max_velocity: V,
-        max_acceleration: A,
-        max_jerk: J,
-    };
     Machine {
-        axes: [axis; 3],
+        axes: [AxisLimits {
+            max_velocity: V,
+            max_acceleration: A,
+            max_jerk: J,
+        }; 3],
         max_feed: V,
         path_tolerance: TOL,
         ..Machine::default()
@@ -108,14 +107,9 @@ fn run(program: &Program, m: &Machine) -> Outcome {
         // Nearest programmed piece, searched forward from the last one (ticks move forward).
         let geo = &program.geometry;
         let (mut best, mut best_k) = (f64::INFINITY, cursor);
-        let from = cursor.saturating_sub(2);
-        for (k, piece) in geo
-            .iter()
-            .enumerate()
-            .take((cursor + 400).min(geo.len()))
-            .skip(from)
-        {
-            let d = piece.distance(tick.p);
+        let from = cursor.saturating_sub(16);
+        for (k, g) in geo.iter().enumerate().take(cursor + 400).skip(from) {
+            let d = g.distance(tick.p);
             if d < best {
                 (best, best_k) = (d, k);
             }
@@ -312,7 +306,7 @@ fn line_arc_petals_with_non_tangent_joins() {
 #[test]
 fn arcs_meeting_with_small_kinks() {
     let m = machine();
-    for kink_deg in [0.002_f64, 0.02, 0.1, 0.5] {
+    for kink_deg in [0.002f64, 0.02, 0.1, 0.5] {
         let mut prog = Program::new(3000.0);
         // Quarter arc R 10 from the origin, then an arc of R 15 whose start tangent is turned
         // by the kink, then a line out.
@@ -333,5 +327,34 @@ fn arcs_meeting_with_small_kinks() {
         prog.line([at[0] + 5.0, at[1] - 5.0, 0.0]);
         let o = run(&prog, &m);
         report(&format!("arcs with a {kink_deg}° kink"), &prog, &o, 3000.0);
+    }
+}
+
+#[test]
+fn g64_q_merges_nearly_collinear_moves() {
+    // 200 points 0.1 mm apart along X, Y jittering by ±2 µm, ending on Y0: with Q 5 µm (the
+    // greedy merge sees lines to ±2 µm ends, so inner points up to 4 µm off) the run is one
+    // straight move, every tick on Y = 0; with Q 1 µm it is not.
+    let m = machine();
+    for (q, straight) in [(0.005, true), (0.001, false)] {
+        let mut text = format!("G21 G90 G17 G64 P0.01 Q{q}\nG1 F3000\n");
+        for k in 1..=200 {
+            let y = if k == 200 {
+                0.0
+            } else if k % 2 == 0 {
+                0.002
+            } else {
+                -0.002
+            };
+            writeln!(text, "X{:.4} Y{:.4}", 0.1 * k as f64, y).unwrap();
+        }
+        text.push_str("M30\n");
+        let mut e = Engine::new(Arc::from(text.as_str()), "q.ngc", &m).unwrap();
+        let mut worst_y: f64 = 0.0;
+        while !e.finished() {
+            worst_y = worst_y.max(e.step().unwrap().p[1].abs());
+        }
+        assert_eq!(worst_y < 1e-12, straight, "Q {q}: |y| up to {worst_y}");
+        assert!((e.tick().p[0] - 0.02).abs() < 1e-12);
     }
 }

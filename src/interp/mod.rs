@@ -3,6 +3,9 @@
 //! rule. The time left over at a block end is carried into the next block (several short blocks
 //! may pass in one tick), and a block's end point is emitted exactly as programmed.
 
+mod differences;
+pub use differences::Differences;
+
 use crate::feed::{FeedLaw, Kin};
 use crate::path::{Geo, Segment};
 use crate::plan::Planned;

@@ -22,6 +22,7 @@ mod chain;
 mod corner;
 mod hermite;
 mod line;
+mod merge;
 mod smooth;
 
 pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, plane_axes, Arc, Shares};
@@ -254,6 +255,7 @@ pub struct PathBuilder {
     machine: Machine,
     held: Option<Held>,
     smooth: SmoothBuilder,
+    merger: merge::Merger,
 }
 
 impl PathBuilder {
@@ -262,11 +264,19 @@ impl PathBuilder {
             machine: machine.clone(),
             held: None,
             smooth: SmoothBuilder::new(),
+            merger: merge::Merger::new(),
         }
     }
 
-    /// Take one block; push the segments that are now final onto `out`.
+    /// Take one block; push the segments that are now final onto `out`. Under G64 Q, nearly
+    /// collinear G1 moves are merged first (merge.rs).
     pub fn push(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
+        let mut merger = std::mem::take(&mut self.merger);
+        merger.push(block, |b| self.push_merged(b, out));
+        self.merger = merger;
+    }
+
+    fn push_merged(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
         let (segment, feed) = match block.motion {
             Motion::Rapid { to } => (
                 Segment::Line(Line {
@@ -366,6 +376,8 @@ impl PathBuilder {
 
     /// End of program: release the held segment, stopping at its end.
     pub fn finish(&mut self, out: &mut Vec<PathBlock>) {
+        let mut merger = std::mem::take(&mut self.merger);
+        merger.flush(&mut |b: &Block| self.push_merged(b, out));
         self.release(0.0, out);
         self.smooth.stop(&self.machine, out);
     }
@@ -427,7 +439,12 @@ impl PathBuilder {
                         // a constant-speed transition needs a block after it that can stop.
                         let max_cut =
                             (TRANSITION_SHARE * held.programmed.min(next.programmed)).min(h.length());
-                        let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds);
+                        // The line after keeps at least (1 − 2·share) of its length; the
+                        // transition's speed is one that line can always stop from, so the
+                        // look-ahead's window-end stop never has to lower it later.
+                        let rest = (1.0 - 2.0 * TRANSITION_SHARE) * next.programmed;
+                        let v_stop = crate::feed::max_entry(m.profile, rest, 0.0, &next.block.limits);
+                        let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds.min(v_stop));
                         match trans {
                             Some((segment, v)) => {
                                 held.block.segment = Segment::Line(Line {
@@ -490,7 +507,20 @@ impl PathBuilder {
         max_cut: f64,
         feeds: f64,
     ) -> Option<(Segment, f64)> {
-        let m = &self.machine;
+        // Passing a transition at one speed, the axes may use the transition jerk (seed 004
+        // Table 1), where the machine gives one.
+        let with_transition_jerk;
+        let m = match self.machine.max_transition_jerk {
+            Some(j) => {
+                let mut m = self.machine.clone();
+                for a in &mut m.axes {
+                    a.max_jerk = j;
+                }
+                with_transition_jerk = m;
+                &with_transition_jerk
+            }
+            None => &self.machine,
+        };
         if dot(t_in, t_out) < corner::REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
             return None;
         }

@@ -11,8 +11,9 @@
 //! 2. Junctions. Where two spans do not already join with equal first and second derivatives,
 //!    both are cut back by d and a quintic Hermite transition (hermite.rs; eq. 45–52 for two
 //!    lines) joins them: d from the apex distance of eq. 52 at the tolerance, at most half of
-//!    each programmed span, halved until the transition stays within the tolerance of the
-//!    programmed geometry. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the
+//!    each programmed span, shrunk until the transition stays within the tolerance of the
+//!    programmed geometry (eq. 52 between lines; a sampled check with a guaranteed guard
+//!    between samples otherwise), and a stop instead where the transition would be slower. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the
 //!    program's stops stop the path.
 //! 3. Chains. Consecutive pieces of similar speed class join one chain (chain.rs); its limits
 //!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
@@ -25,6 +26,7 @@ use super::{
     add, cross, curve_limits, dot, line_limits, norm, scale, sub, unit, Arc, Line, PathBlock, Segment, Shares,
 };
 use crate::config::Machine;
+use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -37,10 +39,11 @@ const SMOOTH_MAX_RATIO: f64 = 4.0;
 /// need no transition.
 const JOINT_D1_EPS: f64 = 1e-9;
 const JOINT_D2_EPS: f64 = 1e-3;
-/// Halvings of a transition's cut before the junction stops instead.
-const MAX_HALVINGS: usize = 40;
+/// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
+const MAX_SHRINKS: usize = 60;
+const SHRINK: f64 = 0.85;
 /// Samples of a transition checked against the programmed geometry.
-const DEVIATION_SAMPLES: usize = 16;
+const DEVIATION_SAMPLES: usize = 64;
 /// Share of the tolerance a fitted span may use: a span that needs all of it fits badly (its
 /// curvature swings), and splitting it is faster to run.
 const SPAN_SHARE: f64 = 0.7;
@@ -54,13 +57,6 @@ const RUN_MAX: usize = 1024;
 /// Pieces at most in one chain, and the speed ratio within which pieces share a chain.
 const CHAIN_MAX_PIECES: usize = 512;
 const CHAIN_SPEED_RATIO: f64 = 0.8;
-/// Budget split on chains: all the free acceleration where curvature leaves it, and a small
-/// tangential share kept where it does not (a sharp transition is short: its speed matters more
-/// than the rate of change of speed inside it).
-const CHAIN_SHARES: Shares = Shares {
-    a_cap: 1.0,
-    tangential: 0.005,
-};
 /// Shorter pieces are dropped (m).
 const MIN_PIECE: f64 = 1e-12;
 
@@ -380,7 +376,7 @@ impl SmoothBuilder {
             self.held = Some(next);
             return;
         }
-        match transition(&held, &next) {
+        match transition(&held, &next, m) {
             Some((d_held, d_next, h)) => {
                 held.piece.u1 -= d_held;
                 next.piece.u0 += d_next;
@@ -422,7 +418,7 @@ impl SmoothBuilder {
             } else {
                 let k = norm(b[1]);
                 let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-                curve_limits(&b, rho, feed / sigma, m, CHAIN_SHARES).v_max
+                chain_limits(&b, rho, feed / sigma, piece.length(), m).v_max
             };
             let fits = !self.chain.is_empty()
                 && feed == self.chain_feed
@@ -471,7 +467,7 @@ impl SmoothBuilder {
                 let k = norm(b[1]);
                 let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
                 let v_cap = self.chain_feed / self.chain_sigma;
-                let limits = curve_limits(b, rho, v_cap, m, CHAIN_SHARES);
+                let limits = chain_limits(b, rho, v_cap, chain.length(), m);
                 (Segment::Chain(chain), limits, self.chain_sigma)
             }
         };
@@ -552,9 +548,55 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
     knots
 }
 
+/// Tangential shares tried for a chain (see `chain_limits`).
+const TANGENTIAL_SHARES: [f64; 5] = [0.005, 0.02, 0.05, 0.1, 0.25];
+
+/// Time of the 7-phase law from rest to rest over `length` within `limits`.
+fn rest_to_rest(length: f64, limits: &Limits) -> f64 {
+    let req = BlockRequest {
+        length,
+        v_in: 0.0,
+        v_out: 0.0,
+        v_feed: limits.v_max,
+        limits: *limits,
+    };
+    scurve7::plan(&req).duration()
+}
+
+/// Limits of a chain of `length` with derivative bounds `b`: of the tangential shares tried, the
+/// one whose limits give the shortest rest-to-rest time over the chain — a long curve is
+/// fastest at the highest speed its curvature allows, a short one needs room to speed up.
+fn chain_limits(b: &[Vec3; 3], rho: f64, v_cap: f64, length: f64, m: &Machine) -> Limits {
+    let time = |l: &Limits| rest_to_rest(length, l);
+    TANGENTIAL_SHARES
+        .iter()
+        .map(|&tangential| {
+            let shares = Shares {
+                a_cap: 1.0,
+                tangential,
+            };
+            curve_limits(b, rho, v_cap, m, shares)
+        })
+        .min_by(|x, y| time(x).total_cmp(&time(y)))
+        .expect("shares are tried")
+}
+
+/// Whether running through transition `h` beats stopping at the corner: a tiny sharp transition
+/// allows so little speed that its time at that speed exceeds the rest-to-rest time over its
+/// length with the axis jerk alone (four phases of T_j, L = 2·J·T_j³).
+fn faster_than_a_stop(h: &Hermite, m: &Machine) -> bool {
+    let b = h.derivative_bounds();
+    let k = norm(b[1]);
+    let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
+    let v = chain_limits(&b, rho, m.max_feed, h.length(), m).v_max;
+    let j = m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min);
+    let t_stop = 4.0 * (h.length() / (2.0 * j)).cbrt();
+    h.length() < v * t_stop
+}
+
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
 /// (stop) at a reversal or when no cut keeps the tolerance.
-fn transition(held: &Span, next: &Span) -> Option<(f64, f64, Hermite)> {
+fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, f64, Hermite)> {
     let end = jet_at(&held.piece, held.piece.length());
     let start = jet_at(&next.piece, 0.0);
     let (t_in, t_out) = (unit(end.d1), unit(start.d1));
@@ -574,7 +616,17 @@ fn transition(held: &Span, next: &Span) -> Option<(f64, f64, Hermite)> {
         .min(0.5 * next.first.source.length())
         .min(held.piece.length())
         .min(next.piece.length());
-    for _ in 0..MAX_HALVINGS {
+    // Two lines: eq. 52 puts the largest deviation, |OQ| = tol, at the apex (blend.rs tests).
+    let lines = matches!(
+        (
+            held.piece.curve,
+            next.piece.curve,
+            held.last.source,
+            next.first.source
+        ),
+        (Curve::Line(_), Curve::Line(_), Source::Line(_), Source::Line(_))
+    );
+    for _ in 0..MAX_SHRINKS {
         if d.is_nan() || d <= MIN_PIECE {
             return None;
         }
@@ -582,14 +634,21 @@ fn transition(held: &Span, next: &Span) -> Option<(f64, f64, Hermite)> {
         let b = jet_at(&next.piece, d);
         // Parameter speed 1 at both ends: λ is the cut length on both sides.
         let h = Hermite::new(a, b, 2.0 * d);
-        let within = (1..DEVIATION_SAMPLES).all(|k| {
-            let p = h.eval(h.length() * k as f64 / DEVIATION_SAMPLES as f64).p;
-            held.last.source.distance(p).min(next.first.source.distance(p)) <= tol
-        });
-        if within {
-            return Some((d, d, h));
+        if lines || within_tolerance(&h, &held.last.source, &next.first.source, tol) {
+            return faster_than_a_stop(&h, m).then_some((d, d, h));
         }
-        d *= 0.5;
+        d *= SHRINK;
     }
     None
+}
+
+/// Every point of `h` within `tol` of one of the two programmed pieces: samples every λ/N,
+/// each at most tol − σ_max·λ/(2N) away, where σ_max bounds |p'| — no point of the curve is
+/// farther than σ_max·λ/(2N) from a sample.
+fn within_tolerance(h: &Hermite, a: &Source, b: &Source, tol: f64) -> bool {
+    let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
+    (0..=DEVIATION_SAMPLES).all(|k| {
+        let p = h.eval(h.length() * k as f64 / DEVIATION_SAMPLES as f64).p;
+        a.distance(p).min(b.distance(p)) <= tol - guard
+    })
 }

@@ -133,7 +133,10 @@ impl Planner {
         // A full window releases a small batch: one backward pass serves EMIT_BATCH segments
         // (the pass re-plans the deceleration zone at the window's end, tens of segments on
         // micro-segment programs), and no tick pays for a large burst.
-        if self.window.len() >= self.capacity {
+        // A constant-speed transition at the window's end would be planned to stop there, at
+        // zero speed for ever: the window waits for the block after it, which can stop.
+        let last_can_stop = !self.window.back().is_some_and(|e| e.block.constant_speed);
+        if self.window.len() >= self.capacity && last_can_stop {
             self.backward();
             for _ in 0..EMIT_BATCH.min(self.capacity / 2) {
                 self.emit_front(out);

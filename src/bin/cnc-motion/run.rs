@@ -3,6 +3,7 @@
 use clap::Args;
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
+use cnc_motion::interp::Differences;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::process::ExitCode;
@@ -105,11 +106,17 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     let mut torque = Peaks::default();
     let mut max_contour: f64 = 0.0;
     let mut n: u64 = 0;
+    let mut emitted = Differences::new(engine.tick().p, machine.interpolation_period);
     while !engine.finished() && engine.time() < args.max_time {
         let tick = *engine.step().map_err(|e| e.to_string())?;
+        // The larger of the feed law's values and what the ticks show (steps at corners).
+        let (dv, da, dj) = emitted.push(tick.p);
         v.take(tick.v);
         a.take(tick.a);
         j.take(tick.j);
+        v.take(dv);
+        a.take(da);
+        j.take(dj);
         let axes = engine.axes();
         fe.take(axes.map(|s| s.following_error));
         torque.take(axes.map(|s| s.motor_torque));
