@@ -35,7 +35,7 @@ def coupling():
 
 def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H, stop_time=None,
                  after=0.3, t_max=120.0, record=None, inputs=None, grid="exact", two_way=True):
-    """Own master. Runs until stop_time, or (stop_time None) until program.finished + `after` s.
+    """Own master. Runs until stop_time, or (stop_time None) until status.finished + `after` s.
 
     `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step.
     `grid`: "exact" communication points k·h, or "ns" as libcosim computes them (see fmusim.Slave).
@@ -58,7 +58,7 @@ def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H
         for comp in slaves:
             names = [r.split(".", 1)[1] for r in record if r.startswith(comp + ".")]
             readers[comp] = (names, slaves[comp].reader(names))
-        i_fin = record.index("cnc.program.finished")
+        i_fin = record.index("cnc.status.finished")
         rows = []
         t_end = None
         while True:

@@ -23,7 +23,7 @@ MM = 1e3
 
 
 def simulate(fmu, program=None, profile=None, t_max=300.0):
-    """fmpy.simulate_fmu at the 1 ms interpolation period, stopped one step after program.finished."""
+    """fmpy.simulate_fmu at the 1 ms interpolation period, stopped one step after status.finished."""
     md = read_model_description(str(fmu))
     names = [v.name for v in md.modelVariables
              if v.causality == "output" and v.type in ("Real", "Integer", "Boolean")]
@@ -33,7 +33,7 @@ def simulate(fmu, program=None, profile=None, t_max=300.0):
     if profile is not None:  # fmpy sets Enumerations by their integer
         var = next(v for v in md.modelVariables if v.name == "machine.profile")
         start["machine.profile"] = next(int(i.value) for i in var.declaredType.items if i.name == profile)
-    fin = [next(v.valueReference for v in md.modelVariables if v.name == "program.finished")]
+    fin = [next(v.valueReference for v in md.modelVariables if v.name == "status.finished")]
 
     def step_finished(time, recorder):  # keep going while the program runs
         return not recorder.fmu.getBoolean(fin)[0]
@@ -109,7 +109,7 @@ def main():
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     res = simulate(args.fmu, args.program, args.profile)
-    if not res["program.finished"][-1]:
+    if not res["status.finished"][-1]:
         sys.exit("program did not finish")
     for k, v in summary(res).items():
         if isinstance(v, list):

@@ -1,5 +1,5 @@
 """Small helpers shared by the examples and the Python tests: FMU paths, a named-variable wrapper
-around fmpy's FMU2Slave, and a stand-alone run of CncMotion.fmu until `program.finished`.
+around fmpy's FMU2Slave, and a stand-alone run of CncMotion.fmu until `status.finished`.
 
 Nothing here knows value references: every variable is looked up by name in modelDescription.xml,
 so the scripts follow the FMU when variables are added or renumbered.
@@ -181,7 +181,7 @@ def cnc_outputs(unpacked):
 
 
 def run_cnc(unpacked, parameters=None, h=1e-3, t_max=120.0, after=0.0, inputs=None, names=None):
-    """Run CncMotion alone until program.finished (plus `after` seconds); returns {name: array}.
+    """Run CncMotion alone until status.finished (plus `after` seconds); returns {name: array}.
 
     `inputs(t, slave)` may set inputs before each step (feed hold, override)."""
     s = Slave(unpacked, "cnc")
@@ -189,7 +189,7 @@ def run_cnc(unpacked, parameters=None, h=1e-3, t_max=120.0, after=0.0, inputs=No
         s.initialize(parameters)
         names = names or cnc_outputs(unpacked)
         read = s.reader(names)
-        i_fin = names.index("program.finished")
+        i_fin = names.index("status.finished")
         rows = [[s.time] + read()]
         t_end = None
         while s.time < t_max:

@@ -22,7 +22,7 @@ from fmpy import read_model_description  # noqa: E402
 from fmusim import AXES, CNC_FMU, SSP, STRUCTURE_FMU  # noqa: E402
 
 CNC_RECORDED = [f"{a}.command.{q}" for a in AXES for q in ("position", "velocity", "acceleration", "jerk")] + [
-    "path.feed", "path.distance", "program.line", "program.finished"] + [
+    "path.feed", "path.distance", "status.line", "status.finished"] + [
     f"{a}.{q}" for a in AXES for q in ("position", "followingError")]
 STRUCTURE_RECORDED = [f"{a}.{q}" for a in AXES for q in ("deflection", "acceleration")]
 
@@ -47,11 +47,16 @@ def _connector(var):
 
 
 def bindings_xml(params):
-    """Inline parameter values of a component (Real parameters only). libcosim applies them; fmpy.ssp
-    does not (pass the same values to simulate_ssp as parameter_set, see cosim.cosim_fmpy_ssp)."""
+    """Inline parameter values of a component (Python ints as Integer, the rest as Real; e.g. the
+    Integer `machine.profileIndex`, which importers without Enumerations can set). libcosim applies
+    them; fmpy.ssp does not (pass the same values to simulate_ssp as parameter_set, see
+    cosim.cosim_fmpy_ssp)."""
     if not params:
         return ""
-    rows = "\n".join(f'              <ssv:Parameter name={quoteattr(k)}><ssv:Real value="{float(v)!r}"/></ssv:Parameter>'
+
+    def value(v):
+        return f'<ssv:Integer value="{v}"/>' if isinstance(v, int) else f'<ssv:Real value="{float(v)!r}"/>'
+    rows = "\n".join(f'              <ssv:Parameter name={quoteattr(k)}>{value(v)}</ssv:Parameter>'
                      for k, v in params.items())
     return f"""      <ssd:ParameterBindings>
         <ssd:ParameterBinding>
@@ -83,7 +88,7 @@ def component_xml(name, fmu_path, wanted, params=None):
     return "\n".join(lines)
 
 
-def ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params=None):
+def ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params=None, cnc_params=None):
     conns = connections()
     ports = {"cnc": [], "structure": []}
     for fc, fv, tc, tv in conns:
@@ -98,7 +103,7 @@ def ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params=None):
 <ssd:SystemStructureDescription {SSD_NS} version="1.0" name="CncOnFrame">
   <ssd:System name="CncOnFrame" description="CNC motion controller driving a modal machine frame">
   <ssd:Elements>
-{component_xml("cnc", cnc_fmu, cnc_ports)}
+{component_xml("cnc", cnc_fmu, cnc_ports, cnc_params)}
 {component_xml("structure", structure_fmu, st_ports, structure_params)}
   </ssd:Elements>
   <ssd:Connections>
@@ -110,10 +115,12 @@ def ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params=None):
 """
 
 
-def make_ssp(cnc_fmu=CNC_FMU, structure_fmu=STRUCTURE_FMU, out=SSP, stop_time=8.0, structure_params=None):
-    """`structure_params`: {variable: value} bound in the SSP (e.g. {"x.couplingMass": 1.0})."""
+def make_ssp(cnc_fmu=CNC_FMU, structure_fmu=STRUCTURE_FMU, out=SSP, stop_time=8.0, structure_params=None,
+             cnc_params=None):
+    """`structure_params`, `cnc_params`: {variable: value} bound in the SSP (e.g. {"x.couplingMass": 1.0},
+    {"machine.profileIndex": 5})."""
     cnc_fmu, structure_fmu, out = pathlib.Path(cnc_fmu), pathlib.Path(structure_fmu), pathlib.Path(out)
-    text = ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params)
+    text = ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params, cnc_params)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_suffix(".tmp")
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:

@@ -42,7 +42,7 @@ def simulate_case(case, cnc_fmu, structure_fmu, two_way=False):
     for a in fmusim.AXES:
         params[f"{a}.maxJerk"] = jerk * 1e-3
     res = cosim_slaves(cnc, st, params, record=[
-        *(f"cnc.{a}.command.velocity" for a in fmusim.AXES), "cnc.program.finished", "cnc.path.contourError",
+        *(f"cnc.{a}.command.velocity" for a in fmusim.AXES), "cnc.status.finished", "cnc.path.contourError",
         *(f"structure.{a}.deflection" for a in fmusim.AXES)], after=0.2, two_way=two_way)
     rms, stops = residual_vibration(res)
     defl = np.sqrt(sum(res[f"structure.{a}.deflection"] ** 2 for a in fmusim.AXES))

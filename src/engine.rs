@@ -16,7 +16,7 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
-const STATE_VERSION: u32 = 1;
+const STATE_VERSION: u32 = 2;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
@@ -481,7 +481,7 @@ impl Engine {
     pub fn save_state(&self) -> Vec<u8> {
         let mut out = STATE_VERSION.to_le_bytes().to_vec();
         // Plain data only, so this cannot fail; an empty body would be refused by restore_state.
-        out.extend(serde_json::to_vec(self).unwrap_or_default());
+        out.extend(bincode::serialize(self).unwrap_or_default());
         out
     }
 
@@ -497,7 +497,7 @@ impl Engine {
             ));
         }
         let mut restored: Engine =
-            serde_json::from_slice(&bytes[4..]).map_err(|e| format!("engine state: {e}"))?;
+            bincode::deserialize(&bytes[4..]).map_err(|e| format!("engine state: {e}"))?;
         if restored.machine != self.machine {
             return Err("engine state was saved for another machine configuration".into());
         }

@@ -1,114 +1,212 @@
-//! The CncMotion FMU model: its parameters, inputs and outputs as ONE table of variables. The
-//! table drives get/set dispatch, start values (read from a default model), Reset and the
-//! modelDescription.xml; the FMI glue (crates/fmi2) knows nothing model-specific.
+//! The CncMotion FMU model: its variables as ONE table of plain rows ([`ROWS`], fmi2's own
+//! Type/Causality/Variability), each naming the [`Slot`] of the model it reads or writes; get and
+//! set are one match over the slots. crates/fmi2 generates the XML, the units and the
+//! documentation from the rows.
 
 use crate::config::{CornerMode, Machine};
 use crate::engine::Engine;
 use crate::feed::ProfileKind;
+use crate::servo::PARAMETERS as SERVO;
+use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
+use fmi2::Type::{Boolean as BOOL, Enumeration as ENUM, Integer as INT, Real as REAL, String as STR};
+use fmi2::Variability::{Continuous as CONT, Discrete as TICK, Fixed as FIX};
+use fmi2::{EnumerationType, Type, Value, VariableInfo};
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::sync::Arc;
 
-/// Value types of the table (FMI 2.0 scalar types; enumerations are integers 1…n).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Kind {
-    Real,
-    Integer,
-    Boolean,
-    String,
-    /// Index into `ENUMERATIONS`.
-    Enumeration(usize),
+pub const MODEL_NAME: &str = "CncMotion";
+
+/// What an acc/dec law is (an Enumeration item's description; every law must have one).
+fn profile_doc(k: ProfileKind) -> &'static str {
+    match k {
+        ProfileKind::Scurve7 => "7-phase jerk-limited S-curve (Pessoles et al.)",
+        ProfileKind::Quintic => "quintic polynomial feedrate (Chen et al.)",
+        ProfileKind::Jerk15 => "15-phase jerk-continuous law (Ji et al.)",
+        ProfileKind::Mixed57 => "mixed 7/5-period S-curve (Zhang et al.)",
+        ProfileKind::Trapezoid => "linear acceleration/deceleration",
+    }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Causality {
-    Parameter,
-    Input,
-    Output,
-    Independent,
+fn corner_doc(c: CornerMode) -> &'static str {
+    match c {
+        CornerMode::ExactStop => "stop at every corner",
+        CornerMode::AccelerationPeriod => "corner feed A·T/(1−cos θ) per axis (seed 003)",
+        CornerMode::Circular => "circular blend within the path tolerance",
+        CornerMode::Polynomial => "quintic transition at one speed within the path tolerance (seed 004)",
+        CornerMode::Smooth => "C2 quintic transitions planned with the path, micro-segment runs as one curve",
+    }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Variability {
-    Fixed,
-    Tunable,
-    Discrete,
-    Continuous,
+/// The Enumeration types `Profile` and `Corner`: items (name, description) 1…n in the order of
+/// `ProfileKind::ALL` / `CornerMode::ALL`, so the XML follows the library's lists.
+pub fn enumerations() -> Vec<EnumerationType> {
+    let profiles = ProfileKind::ALL.iter().map(|&k| (k.name(), profile_doc(k)));
+    let corners = CornerMode::ALL.iter().map(|&c| (c.name(), corner_doc(c)));
+    vec![
+        EnumerationType::new("Profile", profiles),
+        EnumerationType::new("Corner", corners),
+    ]
 }
 
-/// Reader of a value; `usize` is the axis (0, 1, 2) or unused.
-pub type Get<T> = fn(&CncMotion, usize) -> T;
-/// Writer of a value, refusing bad values with a message.
-pub type Set<T> = fn(&mut CncMotion, usize, T) -> Result<(), String>;
-
-/// Writer of a string value.
-pub type SetStr = for<'a> fn(&mut CncMotion, usize, &'a str) -> Result<(), String>;
-
-/// How a variable is read and written on the model (no writer: outputs).
-#[derive(Clone, Copy)]
-pub enum Access {
-    Real(Get<f64>, Option<Set<f64>>),
-    Integer(Get<i32>, Option<Set<i32>>),
-    Boolean(Get<bool>, Option<Set<bool>>),
-    String(Get<String>, Option<SetStr>),
+/// What a row reads or writes. `A` in a slot of the table is the axis, filled in per axis.
+#[derive(Clone, Copy, Debug)]
+pub enum Slot {
+    Program,
+    ProgramFile,
+    /// interpolationPeriod, pathTolerance, chordTolerance, maxFeed, maxPathAcceleration,
+    /// maxPathJerk, maxSnap, maxTransitionJerk.
+    Machine(usize),
+    Lookahead,
+    Profile,
+    ProfileIndex,
+    Corner,
+    CornerIndex,
+    /// Axis; maxVelocity, maxAcceleration, maxJerk.
+    Limit(usize, usize),
+    /// Axis; index into `servo::PARAMETERS` (one row of the table stands for all of them).
+    Servo(usize, usize),
+    ServoEnabled,
+    FeedOverride,
+    FeedHold,
+    LoadForce(usize),
+    /// Axis; position, velocity, acceleration, jerk of the command.
+    Command(usize, usize),
+    /// feed, acceleration, jerk, distance along the path.
+    Path(usize),
+    Line,
+    Finished,
+    /// Axis; position, velocity, followingError, motorTorque, driveForce of the drive.
+    Drive(usize, usize),
+    ContourError,
 }
 
-/// One row of the table.
-#[derive(Clone)]
-pub struct Variable {
-    pub name: String,
-    pub value_reference: u32,
-    pub kind: Kind,
-    pub causality: Causality,
-    pub variability: Variability,
-    /// SI unit (declared in UnitDefinitions) and the unit shown to users.
-    pub unit: Option<&'static str>,
-    pub display_unit: Option<&'static str>,
-    pub description: String,
-    pub axis: usize,
-    pub access: Access,
-}
+const A: usize = usize::MAX;
+const NO: Option<f64> = None;
+const ZERO: Option<f64> = Some(0.0);
 
-/// Enumeration types: name and items (name, description); values are 1-based.
-pub const ENUMERATIONS: [(&str, &[(&str, &str)]); 2] = [
-    (
-        "Profile",
-        &[
-            ("scurve7", "7-phase jerk-limited S-curve (Pessoles et al.)"),
-            ("quintic", "quintic polynomial feedrate (Chen et al.)"),
-            ("jerk15", "15-phase jerk-continuous law (Ji et al.)"),
-            ("mixed57", "mixed 7/5-period S-curve (Zhang et al.)"),
-            ("trapezoid", "linear acceleration/deceleration"),
-        ],
-    ),
-    (
-        "Corner",
-        &[
-            ("exact_stop", "stop at every corner"),
-            (
-                "acceleration_period",
-                "corner feed A·T/(1−cos θ) per axis (seed 003)",
-            ),
-            ("circular", "circular blend within the path tolerance"),
-            (
-                "polynomial",
-                "quintic transition within the path tolerance (seed 004)",
-            ),
-        ],
-    ),
+/// See [`fmi2::table::Row`]: `#` rows are per axis. Outputs depend on no input (inputs act from
+/// the next step on).
+type Row = fmi2::table::Row<Slot>;
+
+#[rustfmt::skip]
+pub const ROWS: &[Row] = &[
+    ("program",                     STR,     PAR, FIX,  "",     NO,   NO,        Slot::Program,          "G-code program text; empty: read programFile"),
+    ("programFile",                 STR,     PAR, FIX,  "",     NO,   NO,        Slot::ProgramFile,      "G-code file, relative to the FMU's resources"),
+    ("machine.interpolationPeriod", REAL,    PAR, FIX,  "s",    ZERO, NO,        Slot::Machine(0),       "interpolation period T"),
+    ("machine.pathTolerance",       REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(1),       "default G64 path tolerance"),
+    ("machine.chordTolerance",      REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(2),       "chord error on arcs"),
+    ("machine.maxFeed",             REAL,    PAR, FIX,  "m/s",  ZERO, NO,        Slot::Machine(3),       "maximum feed (also G0)"),
+    ("machine.maxPathAcceleration", REAL,    PAR, FIX,  "m/s2", ZERO, NO,        Slot::Machine(4),       "path acceleration limit on top of the axes' (0: none)"),
+    ("machine.maxPathJerk",         REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Machine(5),       "path jerk limit on top of the axes' (0: none)"),
+    ("machine.maxSnap",             REAL,    PAR, FIX,  "m/s4", ZERO, NO,        Slot::Machine(6),       "snap limit (jerk15)"),
+    ("machine.maxTransitionJerk",   REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Machine(7),       "axis jerk in constant-speed corner transitions (polynomial, circular; 0: the axes' own)"),
+    ("machine.lookaheadBlocks",     INT,     PAR, FIX,  "",     Some(2.0), Some(1e6), Slot::Lookahead,   "look-ahead window (segments)"),
+    ("machine.profile",             ENUM(0), PAR, FIX,  "",     NO,   NO,        Slot::Profile,          "acc/dec law"),
+    ("machine.profileIndex",        INT,     PAR, FIX,  "",     ZERO, NO,        Slot::ProfileIndex,     "acc/dec law as an Integer (importers without Enumerations): 0 keeps machine.profile, 1… its items"),
+    ("machine.corner",              ENUM(1), PAR, FIX,  "",     NO,   NO,        Slot::Corner,           "corner passage"),
+    ("machine.cornerIndex",         INT,     PAR, FIX,  "",     ZERO, NO,        Slot::CornerIndex,      "corner passage as an Integer (importers without Enumerations): 0 keeps machine.corner, 1… its items"),
+    ("#.maxVelocity",               REAL,    PAR, FIX,  "m/s",  ZERO, NO,        Slot::Limit(A, 0),      "# axis velocity limit"),
+    ("#.maxAcceleration",           REAL,    PAR, FIX,  "m/s2", ZERO, NO,        Slot::Limit(A, 1),      "# axis acceleration limit"),
+    ("#.maxJerk",                   REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Limit(A, 2),      "# axis jerk limit"),
+    ("#.servo.*",                   REAL,    PAR, FIX,  "",     NO,   NO,        Slot::Servo(A, 0),      "# drive: "),
+    ("servo.enabled",               BOOL,    PAR, FIX,  "",     NO,   NO,        Slot::ServoEnabled,     "simulate the drives (off: actual = command)"),
+    ("feedOverride",                REAL,    IN,  CONT, "1",    ZERO, Some(2.0), Slot::FeedOverride,     "feed override factor (jerk-limited)"),
+    ("feedHold",                    BOOL,    IN,  TICK, "",     NO,   NO,        Slot::FeedHold,         "feed hold: stop on the path within the limits; release resumes"),
+    ("#.loadForce",                 REAL,    IN,  CONT, "N",    NO,   NO,        Slot::LoadForce(A),     "external force on the # table (from a structure model)"),
+    ("#.command.position",          REAL,    OUT, TICK, "m",    NO,   NO,        Slot::Command(A, 0),    "# commanded position"),
+    ("#.command.velocity",          REAL,    OUT, TICK, "m/s",  NO,   NO,        Slot::Command(A, 1),    "# commanded velocity"),
+    ("#.command.acceleration",      REAL,    OUT, TICK, "m/s2", NO,   NO,        Slot::Command(A, 2),    "# commanded acceleration"),
+    ("#.command.jerk",              REAL,    OUT, TICK, "m/s3", NO,   NO,        Slot::Command(A, 3),    "# commanded jerk"),
+    ("path.feed",                   REAL,    OUT, TICK, "m/s",  NO,   NO,        Slot::Path(0),          "path speed"),
+    ("path.acceleration",           REAL,    OUT, TICK, "m/s2", NO,   NO,        Slot::Path(1),          "path acceleration"),
+    ("path.jerk",                   REAL,    OUT, TICK, "m/s3", NO,   NO,        Slot::Path(2),          "path jerk"),
+    ("path.distance",               REAL,    OUT, TICK, "m",    NO,   NO,        Slot::Path(3),          "path distance travelled"),
+    ("status.line",                 INT,     OUT, TICK, "",     NO,   NO,        Slot::Line,             "source line of the block being executed"),
+    ("status.finished",             BOOL,    OUT, TICK, "",     NO,   NO,        Slot::Finished,         "all motion of the program done"),
+    ("#.position",                  REAL,    OUT, CONT, "m",    NO,   NO,        Slot::Drive(A, 0),      "# actual position"),
+    ("#.velocity",                  REAL,    OUT, CONT, "m/s",  NO,   NO,        Slot::Drive(A, 1),      "# actual velocity"),
+    ("#.followingError",            REAL,    OUT, CONT, "m",    NO,   NO,        Slot::Drive(A, 2),      "# following error (command − feedback)"),
+    ("#.motorTorque",               REAL,    OUT, CONT, "N.m",  NO,   NO,        Slot::Drive(A, 3),      "# motor torque"),
+    ("#.driveForce",                REAL,    OUT, CONT, "N",    NO,   NO,        Slot::Drive(A, 4),      "# force of the drive on the machine structure"),
+    ("path.contourError",           REAL,    OUT, CONT, "m",    NO,   NO,        Slot::ContourError,     "distance of the actual tool point from the programmed path"),
 ];
 
-/// The model: parameters and inputs as set by the importer, and the running engine.
-#[derive(Clone, Debug)]
+impl Slot {
+    fn on_axis(self, i: usize) -> Slot {
+        match self {
+            Slot::Limit(_, k) => Slot::Limit(i, k),
+            Slot::Servo(_, k) => Slot::Servo(i, k),
+            Slot::LoadForce(_) => Slot::LoadForce(i),
+            Slot::Command(_, k) => Slot::Command(i, k),
+            Slot::Drive(_, k) => Slot::Drive(i, k),
+            s => s,
+        }
+    }
+}
+
+/// FMI type of a servo parameter: counts are Integers, the feedback switch a Boolean.
+fn servo_type(fmi_name: &str) -> Type {
+    match fmi_name {
+        "encoderCounts" => INT,
+        "linearScale" => BOOL,
+        _ => REAL,
+    }
+}
+
+/// The table expanded (value references 1…n in this order); the servo row stands for every
+/// drive parameter of its axis.
+pub fn rows() -> Vec<(VariableInfo, Slot)> {
+    fmi2::table::expand(ROWS, &["x", "y", "z"], |row, i, axis| match row.7 {
+        Slot::Servo(..) => servo_rows(i, axis).collect(),
+        slot => vec![(variable(row, axis), slot.on_axis(i))],
+    })
+}
+
+fn variable(row: &Row, axis: &str) -> VariableInfo {
+    let v = fmi2::table::variable(row, axis);
+    // The Integer twins of the Enumerations range over the same items.
+    match row.7 {
+        Slot::ProfileIndex => v.range(Some(0.0), Some(ProfileKind::ALL.len() as f64)),
+        Slot::CornerIndex => v.range(Some(0.0), Some(CornerMode::ALL.len() as f64)),
+        _ => v,
+    }
+}
+
+/// The drive parameters of one axis, from the servo's own table.
+fn servo_rows(i: usize, axis: &str) -> impl Iterator<Item = (VariableInfo, Slot)> + '_ {
+    SERVO.iter().enumerate().map(move |(j, p)| {
+        let (name, kind) = (format!("{axis}.servo.{}", p.fmi_name), servo_type(p.fmi_name));
+        let mut v = VariableInfo::new(name, kind, PAR, FIX, format!("{axis} drive: {}", p.description));
+        if kind == REAL {
+            v = v.unit(p.unit);
+        }
+        if p.description.ends_with("0…1") {
+            v = v.range(Some(0.0), Some(1.0));
+        }
+        (v, Slot::Servo(i, j))
+    })
+}
+
+/// The model: parameters and inputs as set by the importer, and the running engine (serialized
+/// by the FMU separately, with the program text it needs).
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CncMotion {
     pub program: String,
     pub program_file: String,
     pub machine: Machine,
+    /// `machine.profileIndex`/`machine.cornerIndex`: 0 keeps the Enumeration's choice, 1…n
+    /// replace it (for importers that cannot set Enumerations, e.g. libcosim).
+    pub profile_index: i32,
+    pub corner_index: i32,
     pub servo_enabled: bool,
     pub feed_override: f64,
     pub feed_hold: bool,
     pub load_force: [f64; 3],
     /// The FMU's resources folder (for relative `programFile`).
+    #[serde(skip)]
     pub resources: Option<PathBuf>,
+    #[serde(skip)]
     pub engine: Option<Engine>,
 }
 
@@ -118,6 +216,8 @@ impl Default for CncMotion {
             program: String::new(),
             program_file: "default.ngc".into(),
             machine: Machine::default(),
+            profile_index: 0,
+            corner_index: 0,
             servo_enabled: true,
             feed_override: 1.0,
             feed_hold: false,
@@ -128,622 +228,176 @@ impl Default for CncMotion {
     }
 }
 
-pub const MODEL_NAME: &str = "CncMotion";
-/// Changes whenever the variable table changes (checked against modelDescription/).
-pub const GUID: &str = "{5c1f0e52-8f3a-4a57-9d7e-cnc-motion-0001}";
-
-const AXES: [&str; 3] = ["x", "y", "z"];
-
-fn positive(name: &str, v: f64) -> Result<f64, String> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
+fn positive(x: f64) -> Result<f64, String> {
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
     } else {
-        Err(format!("{name} must be a finite positive number, got {v}"))
+        Err(format!("must be a finite positive number, got {x}"))
     }
 }
 
+/// 0 → None (no limit), else a positive limit.
+fn optional(x: f64) -> Result<Option<f64>, String> {
+    if x == 0.0 {
+        Ok(None)
+    } else {
+        positive(x).map(Some)
+    }
+}
+
+/// Item `n` (1-based) of a list of choices.
+fn item<T: Copy>(all: &[T], n: i32) -> Result<T, String> {
+    let i = usize::try_from(n - 1).ok().filter(|&i| i < all.len());
+    i.map(|i| all[i])
+        .ok_or(format!("must be 1 … {}, got {n}", all.len()))
+}
+
+fn index_of<T: PartialEq>(all: &[T], x: &T) -> i32 {
+    all.iter().position(|k| k == x).unwrap_or(0) as i32 + 1
+}
+
 impl CncMotion {
+    pub fn get(&self, slot: Slot) -> Value {
+        let m = &self.machine;
+        let tick = || self.engine.as_ref().map(|e| *e.tick()).unwrap_or_default();
+        let drive = |i: usize| self.engine.as_ref().map(|e| e.axes()[i]).unwrap_or_default();
+        match slot {
+            Slot::Program => Value::String(self.program.clone()),
+            Slot::ProgramFile => Value::String(self.program_file.clone()),
+            Slot::Machine(k) => Value::Real(
+                [
+                    m.interpolation_period,
+                    m.path_tolerance,
+                    m.chord_tolerance,
+                    m.max_feed,
+                    m.max_path_acceleration.unwrap_or(0.0),
+                    m.max_path_jerk.unwrap_or(0.0),
+                    m.max_snap,
+                    m.max_transition_jerk.unwrap_or(0.0),
+                ][k],
+            ),
+            Slot::Lookahead => Value::Integer(m.lookahead_blocks as i32),
+            Slot::Profile => Value::Integer(index_of(&ProfileKind::ALL, &m.profile)),
+            Slot::ProfileIndex => Value::Integer(self.profile_index),
+            Slot::Corner => Value::Integer(index_of(&CornerMode::ALL, &m.corner)),
+            Slot::CornerIndex => Value::Integer(self.corner_index),
+            Slot::Limit(i, k) => {
+                let l = &m.axes[i];
+                Value::Real([l.max_velocity, l.max_acceleration, l.max_jerk][k])
+            }
+            Slot::Servo(i, k) => {
+                let x = (SERVO[k].get)(&m.servo[i]);
+                match servo_type(SERVO[k].fmi_name) {
+                    Type::Integer => Value::Integer(x as i32),
+                    Type::Boolean => Value::Boolean(x != 0.0),
+                    _ => Value::Real(x),
+                }
+            }
+            Slot::ServoEnabled => Value::Boolean(self.servo_enabled),
+            Slot::FeedOverride => Value::Real(self.feed_override),
+            Slot::FeedHold => Value::Boolean(self.feed_hold),
+            Slot::LoadForce(i) => Value::Real(self.load_force[i]),
+            Slot::Command(i, k) => {
+                let t = tick();
+                Value::Real([t.p, t.v, t.a, t.j][k][i])
+            }
+            Slot::Path(k) => {
+                let t = tick();
+                Value::Real([t.feed, t.path_acceleration, t.path_jerk, t.distance][k])
+            }
+            Slot::Line => Value::Integer(tick().line as i32),
+            Slot::Finished => Value::Boolean(tick().finished),
+            Slot::Drive(i, k) => {
+                let d = drive(i);
+                Value::Real(
+                    [
+                        d.position,
+                        d.velocity,
+                        d.following_error,
+                        d.motor_torque,
+                        d.drive_force,
+                    ][k],
+                )
+            }
+            Slot::ContourError => Value::Real(self.engine.as_ref().map_or(0.0, |e| e.contour_error())),
+        }
+    }
+
+    /// Write a parameter or input; bad values are refused with the reason (the FMI layer has
+    /// already refused non-finite Reals and values outside the declared min/max).
+    pub fn set(&mut self, slot: Slot, value: Value) -> Result<(), String> {
+        let m = &mut self.machine;
+        match (slot, value) {
+            (Slot::Program, Value::String(s)) => self.program = s,
+            (Slot::ProgramFile, Value::String(s)) => self.program_file = s,
+            (Slot::Machine(k), Value::Real(x)) => match k {
+                0 => m.interpolation_period = positive(x)?,
+                1 => m.path_tolerance = positive(x)?,
+                2 => m.chord_tolerance = positive(x)?,
+                3 => m.max_feed = positive(x)?,
+                4 => m.max_path_acceleration = optional(x)?,
+                5 => m.max_path_jerk = optional(x)?,
+                6 => m.max_snap = positive(x)?,
+                _ => m.max_transition_jerk = optional(x)?,
+            },
+            (Slot::Lookahead, Value::Integer(n)) => m.lookahead_blocks = n as usize,
+            (Slot::Profile, Value::Integer(n)) => m.profile = item(&ProfileKind::ALL, n)?,
+            (Slot::Corner, Value::Integer(n)) => m.corner = item(&CornerMode::ALL, n)?,
+            (Slot::ProfileIndex, Value::Integer(n)) => self.profile_index = n,
+            (Slot::CornerIndex, Value::Integer(n)) => self.corner_index = n,
+            (Slot::Limit(i, k), Value::Real(x)) => {
+                let l = &mut m.axes[i];
+                *[&mut l.max_velocity, &mut l.max_acceleration, &mut l.max_jerk][k] = positive(x)?;
+            }
+            (Slot::Servo(i, k), v) => {
+                let x = match v {
+                    Value::Real(x) => x,
+                    Value::Integer(n) => n as f64,
+                    Value::Boolean(b) => f64::from(u8::from(b)),
+                    Value::String(_) => return Err("not a number".into()),
+                };
+                m.servo[i].set(SERVO[k].fmi_name, x)?
+            }
+            (Slot::ServoEnabled, Value::Boolean(b)) => self.servo_enabled = b,
+            (Slot::FeedOverride, Value::Real(x)) => self.feed_override = x,
+            (Slot::FeedHold, Value::Boolean(b)) => self.feed_hold = b,
+            (Slot::LoadForce(i), Value::Real(x)) => self.load_force[i] = x,
+            _ => return Err("cannot be set".into()),
+        }
+        Ok(())
+    }
+
     /// Load the program (inline text, or the file, relative to the resources folder) and start
     /// the engine. Errors come back as `file:line:col: message`.
     pub fn initialize(&mut self) -> Result<(), String> {
+        if self.profile_index != 0 {
+            self.machine.profile = item(&ProfileKind::ALL, self.profile_index)?;
+        }
+        if self.corner_index != 0 {
+            self.machine.corner = item(&CornerMode::ALL, self.corner_index)?;
+        }
         self.machine.check()?;
         let (text, name) = if !self.program.trim().is_empty() {
             (self.program.clone(), "program".to_string())
         } else {
-            let path = PathBuf::from(&self.program_file);
-            let path = if path.is_relative() {
-                match &self.resources {
-                    Some(dir) => dir.join(path),
-                    None => path,
-                }
-            } else {
-                path
+            let path = match &self.resources {
+                Some(dir) => dir.join(&self.program_file),
+                None => PathBuf::from(&self.program_file),
             };
             let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
             (text, self.program_file.clone())
         };
-        let engine = Engine::new(Arc::from(text), &name, &self.machine)
-            .map_err(|e| e.to_string())?
-            .with_servo(self.servo_enabled);
-        self.engine = Some(engine);
-        self.apply_inputs();
+        let engine = Engine::new(Arc::from(text), &name, &self.machine).map_err(|e| e.to_string())?;
+        self.engine = Some(engine.with_servo(self.servo_enabled));
         Ok(())
     }
 
-    fn apply_inputs(&mut self) {
-        let (k, hold, force) = (self.feed_override, self.feed_hold, self.load_force);
-        if let Some(e) = self.engine.as_mut() {
-            e.set_feed_override(k);
-            e.set_feed_hold(hold);
-            e.set_load_force(force);
-        }
-    }
-
-    /// One communication step of length h (s) from the engine's time.
+    /// One communication step of length h (s) from the engine's time, with the current inputs.
     pub fn do_step(&mut self, h: f64) -> Result<(), String> {
-        self.apply_inputs();
-        match self.engine.as_mut() {
-            Some(e) => e.advance(h).map_err(|e| e.to_string()),
-            None => Err("the model is not initialized".into()),
-        }
+        let e = self.engine.as_mut().ok_or("the model is not initialized")?;
+        e.set_feed_override(self.feed_override);
+        e.set_feed_hold(self.feed_hold);
+        e.set_load_force(self.load_force);
+        e.advance(h).map_err(|e| e.to_string())
     }
-
-    fn tick(&self) -> crate::interp::Tick {
-        self.engine.as_ref().map(|e| *e.tick()).unwrap_or_default()
-    }
-
-    fn axis_state(&self, i: usize) -> crate::servo::AxisState {
-        self.engine.as_ref().map(|e| e.axes()[i]).unwrap_or_default()
-    }
-}
-
-macro_rules! real_param {
-    ($v:ident, $name:expr, $unit:expr, $disp:expr, $desc:expr, $axis:expr, |$m:ident, $i:ident| $get:expr, |$ms:ident, $is:ident, $x:ident| $set:expr) => {
-        $v.push(Variable {
-            name: $name.to_string(),
-            value_reference: 0,
-            kind: Kind::Real,
-            causality: Causality::Parameter,
-            variability: Variability::Fixed,
-            unit: $unit,
-            display_unit: $disp,
-            description: $desc.to_string(),
-            axis: $axis,
-            access: Access::Real(
-                |c, $i| {
-                    let $m = &c.machine;
-                    $get
-                },
-                Some(|c, $is, $x| {
-                    let $ms = &mut c.machine;
-                    $set;
-                    Ok(())
-                }),
-            ),
-        })
-    };
-}
-
-#[allow(clippy::too_many_arguments)]
-fn output_real(
-    v: &mut Vec<Variable>,
-    name: String,
-    unit: &'static str,
-    display: Option<&'static str>,
-    variability: Variability,
-    desc: String,
-    axis: usize,
-    get: fn(&CncMotion, usize) -> f64,
-) {
-    v.push(Variable {
-        name,
-        value_reference: 0,
-        kind: Kind::Real,
-        causality: Causality::Output,
-        variability,
-        unit: Some(unit),
-        display_unit: display,
-        description: desc,
-        axis,
-        access: Access::Real(get, None),
-    });
-}
-
-/// The table, value references numbered in order from 1 (0 is `time`-free; no independent).
-pub fn variables() -> Vec<Variable> {
-    let mut v: Vec<Variable> = Vec::new();
-    v.push(Variable {
-        name: "program".into(),
-        value_reference: 0,
-        kind: Kind::String,
-        causality: Causality::Parameter,
-        variability: Variability::Fixed,
-        unit: None,
-        display_unit: None,
-        description: "G-code program text; empty: read programFile".into(),
-        axis: 0,
-        access: Access::String(
-            |c, _| c.program.clone(),
-            Some(|c, _, s| {
-                c.program = s.to_string();
-                Ok(())
-            }),
-        ),
-    });
-    v.push(Variable {
-        name: "programFile".into(),
-        value_reference: 0,
-        kind: Kind::String,
-        causality: Causality::Parameter,
-        variability: Variability::Fixed,
-        unit: None,
-        display_unit: None,
-        description: "G-code file; relative paths are resolved in the FMU's resources folder".into(),
-        axis: 0,
-        access: Access::String(
-            |c, _| c.program_file.clone(),
-            Some(|c, _, s| {
-                c.program_file = s.to_string();
-                Ok(())
-            }),
-        ),
-    });
-    real_param!(
-        v,
-        "machine.interpolationPeriod",
-        Some("s"),
-        Some("ms"),
-        "interpolation period T",
-        0,
-        |m, _i| m.interpolation_period,
-        |m, _j, x| m.interpolation_period = positive("machine.interpolationPeriod", x)?
-    );
-    v.push(Variable {
-        name: "machine.lookaheadBlocks".into(),
-        value_reference: 0,
-        kind: Kind::Integer,
-        causality: Causality::Parameter,
-        variability: Variability::Fixed,
-        unit: None,
-        display_unit: None,
-        description: "look-ahead window (segments)".into(),
-        axis: 0,
-        access: Access::Integer(
-            |c, _| c.machine.lookahead_blocks as i32,
-            Some(|c, _, n| {
-                if !(2..=1_000_000).contains(&n) {
-                    return Err(format!("machine.lookaheadBlocks must be 2 … 1000000, got {n}"));
-                }
-                c.machine.lookahead_blocks = n as usize;
-                Ok(())
-            }),
-        ),
-    });
-    v.push(Variable {
-        name: "machine.profile".into(),
-        value_reference: 0,
-        kind: Kind::Enumeration(0),
-        causality: Causality::Parameter,
-        variability: Variability::Fixed,
-        unit: None,
-        display_unit: None,
-        description: "acc/dec law".into(),
-        axis: 0,
-        access: Access::Integer(
-            |c, _| {
-                ProfileKind::ALL
-                    .iter()
-                    .position(|k| *k == c.machine.profile)
-                    .unwrap_or(0) as i32
-                    + 1
-            },
-            Some(|c, _, n| {
-                let k = usize::try_from(n - 1).ok().and_then(|i| ProfileKind::ALL.get(i));
-                c.machine.profile = *k.ok_or(format!("machine.profile must be 1 … 5, got {n}"))?;
-                Ok(())
-            }),
-        ),
-    });
-    v.push(Variable {
-        name: "machine.corner".into(),
-        value_reference: 0,
-        kind: Kind::Enumeration(1),
-        causality: Causality::Parameter,
-        variability: Variability::Fixed,
-        unit: None,
-        display_unit: None,
-        description: "corner passage".into(),
-        axis: 0,
-        access: Access::Integer(
-            |c, _| {
-                CornerMode::ALL
-                    .iter()
-                    .position(|k| *k == c.machine.corner)
-                    .unwrap_or(0) as i32
-                    + 1
-            },
-            Some(|c, _, n| {
-                let k = usize::try_from(n - 1).ok().and_then(|i| CornerMode::ALL.get(i));
-                c.machine.corner = *k.ok_or(format!("machine.corner must be 1 … 4, got {n}"))?;
-                Ok(())
-            }),
-        ),
-    });
-    real_param!(
-        v,
-        "machine.pathTolerance",
-        Some("m"),
-        Some("mm"),
-        "default G64 path tolerance",
-        0,
-        |m, _i| m.path_tolerance,
-        |m, _j, x| m.path_tolerance = positive("machine.pathTolerance", x)?
-    );
-    real_param!(
-        v,
-        "machine.chordTolerance",
-        Some("m"),
-        Some("mm"),
-        "chord error on arcs",
-        0,
-        |m, _i| m.chord_tolerance,
-        |m, _j, x| m.chord_tolerance = positive("machine.chordTolerance", x)?
-    );
-    real_param!(
-        v,
-        "machine.maxFeed",
-        Some("m/s"),
-        Some("mm/min"),
-        "maximum feed (also G0)",
-        0,
-        |m, _i| m.max_feed,
-        |m, _j, x| m.max_feed = positive("machine.maxFeed", x)?
-    );
-    real_param!(
-        v,
-        "machine.maxPathAcceleration",
-        Some("m/s2"),
-        Some("mm/s2"),
-        "path acceleration limit on top of the axes' (0: none)",
-        0,
-        |m, _i| m.max_path_acceleration.unwrap_or(0.0),
-        |m, _j, x| m.max_path_acceleration = if x == 0.0 {
-            None
-        } else {
-            Some(positive("machine.maxPathAcceleration", x)?)
-        }
-    );
-    real_param!(
-        v,
-        "machine.maxPathJerk",
-        Some("m/s3"),
-        Some("mm/s3"),
-        "path jerk limit on top of the axes' (0: none)",
-        0,
-        |m, _i| m.max_path_jerk.unwrap_or(0.0),
-        |m, _j, x| m.max_path_jerk = if x == 0.0 {
-            None
-        } else {
-            Some(positive("machine.maxPathJerk", x)?)
-        }
-    );
-    real_param!(
-        v,
-        "machine.maxSnap",
-        Some("m/s4"),
-        Some("mm/s4"),
-        "snap limit (jerk15)",
-        0,
-        |m, _i| m.max_snap,
-        |m, _j, x| m.max_snap = positive("machine.maxSnap", x)?
-    );
-    for (i, a) in AXES.iter().enumerate() {
-        real_param!(
-            v,
-            format!("{a}.maxVelocity"),
-            Some("m/s"),
-            Some("mm/min"),
-            format!("{a} axis velocity limit"),
-            i,
-            |m, i| m.axes[i].max_velocity,
-            |m, i, x| m.axes[i].max_velocity = positive("maxVelocity", x)?
-        );
-        real_param!(
-            v,
-            format!("{a}.maxAcceleration"),
-            Some("m/s2"),
-            Some("mm/s2"),
-            format!("{a} axis acceleration limit"),
-            i,
-            |m, i| m.axes[i].max_acceleration,
-            |m, i, x| m.axes[i].max_acceleration = positive("maxAcceleration", x)?
-        );
-        real_param!(
-            v,
-            format!("{a}.maxJerk"),
-            Some("m/s3"),
-            Some("mm/s3"),
-            format!("{a} axis jerk limit"),
-            i,
-            |m, i| m.axes[i].max_jerk,
-            |m, i, x| m.axes[i].max_jerk = positive("maxJerk", x)?
-        );
-    }
-    for (i, a) in AXES.iter().enumerate() {
-        for (k, sp) in crate::servo::PARAMETERS.iter().enumerate() {
-            v.push(Variable {
-                name: format!("{a}.servo.{}", sp.fmi_name),
-                value_reference: 0,
-                kind: Kind::Real,
-                causality: Causality::Parameter,
-                variability: Variability::Fixed,
-                unit: Some(sp.unit),
-                display_unit: None,
-                description: format!("{a} drive: {}", sp.description),
-                // Axis and parameter packed in one index: axis·64 + parameter.
-                axis: i * 64 + k,
-                access: Access::Real(
-                    |c, n| (crate::servo::PARAMETERS[n % 64].get)(&c.machine.servo[n / 64]),
-                    Some(|c, n, x| c.machine.servo[n / 64].set(crate::servo::PARAMETERS[n % 64].fmi_name, x)),
-                ),
-            });
-        }
-    }
-    v.push(Variable {
-        name: "servo.enabled".into(),
-        value_reference: 0,
-        kind: Kind::Boolean,
-        causality: Causality::Parameter,
-        variability: Variability::Fixed,
-        unit: None,
-        display_unit: None,
-        description: "simulate the servo drives (off: actual = command)".into(),
-        axis: 0,
-        access: Access::Boolean(
-            |c, _| c.servo_enabled,
-            Some(|c, _, b| {
-                c.servo_enabled = b;
-                Ok(())
-            }),
-        ),
-    });
-    // Inputs.
-    v.push(Variable {
-        name: "feedOverride".into(),
-        value_reference: 0,
-        kind: Kind::Real,
-        causality: Causality::Input,
-        variability: Variability::Continuous,
-        unit: Some("1"),
-        display_unit: None,
-        description: "feed override factor 0 … 2 (jerk-limited)".into(),
-        axis: 0,
-        access: Access::Real(
-            |c, _| c.feed_override,
-            Some(|c, _, x| {
-                if !(0.0..=2.0).contains(&x) {
-                    return Err(format!("feedOverride must be 0 … 2, got {x}"));
-                }
-                c.feed_override = x;
-                Ok(())
-            }),
-        ),
-    });
-    v.push(Variable {
-        name: "feedHold".into(),
-        value_reference: 0,
-        kind: Kind::Boolean,
-        causality: Causality::Input,
-        variability: Variability::Discrete,
-        unit: None,
-        display_unit: None,
-        description: "feed hold: stop on the path within the limits; release resumes".into(),
-        axis: 0,
-        access: Access::Boolean(
-            |c, _| c.feed_hold,
-            Some(|c, _, b| {
-                c.feed_hold = b;
-                Ok(())
-            }),
-        ),
-    });
-    for (i, a) in AXES.iter().enumerate() {
-        v.push(Variable {
-            name: format!("{a}.loadForce"),
-            value_reference: 0,
-            kind: Kind::Real,
-            causality: Causality::Input,
-            variability: Variability::Continuous,
-            unit: Some("N"),
-            display_unit: None,
-            description: format!("external force on the {a} table (from a structure model)"),
-            axis: i,
-            access: Access::Real(
-                |c, i| c.load_force[i],
-                Some(|c, i, x| {
-                    if !x.is_finite() {
-                        return Err(format!("loadForce must be finite, got {x}"));
-                    }
-                    c.load_force[i] = x;
-                    Ok(())
-                }),
-            ),
-        });
-    }
-    // Outputs: the interpolator's command (changes at period ticks: discrete).
-    let d = Variability::Discrete;
-    for (i, a) in AXES.iter().enumerate() {
-        output_real(
-            &mut v,
-            format!("{a}.command.position"),
-            "m",
-            Some("mm"),
-            d,
-            format!("{a} commanded position"),
-            i,
-            |c, i| c.tick().p[i],
-        );
-        output_real(
-            &mut v,
-            format!("{a}.command.velocity"),
-            "m/s",
-            Some("mm/min"),
-            d,
-            format!("{a} commanded velocity"),
-            i,
-            |c, i| c.tick().v[i],
-        );
-        output_real(
-            &mut v,
-            format!("{a}.command.acceleration"),
-            "m/s2",
-            Some("mm/s2"),
-            d,
-            format!("{a} commanded acceleration"),
-            i,
-            |c, i| c.tick().a[i],
-        );
-        output_real(
-            &mut v,
-            format!("{a}.command.jerk"),
-            "m/s3",
-            Some("mm/s3"),
-            d,
-            format!("{a} commanded jerk"),
-            i,
-            |c, i| c.tick().j[i],
-        );
-    }
-    output_real(
-        &mut v,
-        "path.feed".into(),
-        "m/s",
-        Some("mm/min"),
-        d,
-        "path speed".into(),
-        0,
-        |c, _| c.tick().feed,
-    );
-    output_real(
-        &mut v,
-        "path.acceleration".into(),
-        "m/s2",
-        Some("mm/s2"),
-        d,
-        "path acceleration".into(),
-        0,
-        |c, _| c.tick().path_acceleration,
-    );
-    output_real(
-        &mut v,
-        "path.jerk".into(),
-        "m/s3",
-        Some("mm/s3"),
-        d,
-        "path jerk".into(),
-        0,
-        |c, _| c.tick().path_jerk,
-    );
-    output_real(
-        &mut v,
-        "path.distance".into(),
-        "m",
-        Some("mm"),
-        d,
-        "path distance travelled".into(),
-        0,
-        |c, _| c.tick().distance,
-    );
-    v.push(Variable {
-        name: "program.line".into(),
-        value_reference: 0,
-        kind: Kind::Integer,
-        causality: Causality::Output,
-        variability: Variability::Discrete,
-        unit: None,
-        display_unit: None,
-        description: "source line of the block being executed".into(),
-        axis: 0,
-        access: Access::Integer(|c, _| c.tick().line as i32, None),
-    });
-    v.push(Variable {
-        name: "program.finished".into(),
-        value_reference: 0,
-        kind: Kind::Boolean,
-        causality: Causality::Output,
-        variability: Variability::Discrete,
-        unit: None,
-        display_unit: None,
-        description: "all motion of the program done".into(),
-        axis: 0,
-        access: Access::Boolean(|c, _| c.tick().finished, None),
-    });
-    // Outputs: the drives (continuous, sub-stepped).
-    let cont = Variability::Continuous;
-    for (i, a) in AXES.iter().enumerate() {
-        output_real(
-            &mut v,
-            format!("{a}.position"),
-            "m",
-            Some("mm"),
-            cont,
-            format!("{a} actual position"),
-            i,
-            |c, i| c.axis_state(i).position,
-        );
-        output_real(
-            &mut v,
-            format!("{a}.velocity"),
-            "m/s",
-            Some("mm/min"),
-            cont,
-            format!("{a} actual velocity"),
-            i,
-            |c, i| c.axis_state(i).velocity,
-        );
-        output_real(
-            &mut v,
-            format!("{a}.followingError"),
-            "m",
-            Some("mm"),
-            cont,
-            format!("{a} following error (command − feedback)"),
-            i,
-            |c, i| c.axis_state(i).following_error,
-        );
-        output_real(
-            &mut v,
-            format!("{a}.motorTorque"),
-            "N.m",
-            None,
-            cont,
-            format!("{a} motor torque"),
-            i,
-            |c, i| c.axis_state(i).motor_torque,
-        );
-        output_real(
-            &mut v,
-            format!("{a}.driveForce"),
-            "N",
-            None,
-            cont,
-            format!("{a} force of the drive on the machine structure"),
-            i,
-            |c, i| c.axis_state(i).drive_force,
-        );
-    }
-    output_real(
-        &mut v,
-        "path.contourError".into(),
-        "m",
-        Some("mm"),
-        cont,
-        "distance of the actual tool point from the programmed path".into(),
-        0,
-        |c, _| c.engine.as_ref().map_or(0.0, |e| e.contour_error()),
-    );
-    for (k, var) in v.iter_mut().enumerate() {
-        var.value_reference = k as u32 + 1;
-    }
-    v
 }

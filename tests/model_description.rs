@@ -1,9 +1,12 @@
 //! The committed modelDescription/CncMotion.xml is the one the code generates: a change to the
-//! variable table must be committed with its XML (regenerate with `cnc-motion package` and copy).
+//! variable table must be committed with its XML (regenerate: `UPDATE_MODEL_DESCRIPTION=1 cargo test --workspace --test model_description`).
 #[test]
 fn committed_model_description_is_current() {
     let generated = cnc_motion::fmu::model_description();
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/modelDescription/CncMotion.xml");
+    if std::env::var_os("UPDATE_MODEL_DESCRIPTION").is_some() {
+        std::fs::write(path, &generated).expect("writing modelDescription/CncMotion.xml");
+    }
     let committed = std::fs::read_to_string(path).expect("modelDescription/CncMotion.xml");
     if committed != generated {
         let line = committed
@@ -14,8 +17,7 @@ fn committed_model_description_is_current() {
             + 1;
         panic!(
             "modelDescription/CncMotion.xml differs from the generated XML from line {line}; \
-             regenerate: cargo run --release -- package && unzip -p target/fmu/CncMotion.fmu \
-             modelDescription.xml > modelDescription/CncMotion.xml"
+             regenerate: UPDATE_MODEL_DESCRIPTION=1 cargo test --test model_description"
         );
     }
 }

@@ -78,6 +78,18 @@ def test_masters_agree_on_a_stable_two_way_loop(cnc, structure, stable_ssp, grid
         _compare(own_, cosim.cosim_libcosim(stable_ssp, stop_time=T), "libcosim (stable)")
 
 
+def test_libcosim_sets_the_profile_through_the_integer_index(cnc, structure, tmp_path):
+    """libcosim ignores Enumerations: the Integer machine.profileIndex bound in the SSP selects the
+    trapezoid there, equal to the own master setting the Enumeration, and unlike the default."""
+    from make_ssp import make_ssp
+    ssp_ = make_ssp(out=tmp_path / "trapezoid.ssp", cnc_params={"machine.profileIndex": 5})
+    own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"machine.profile": "trapezoid"}, stop_time=T, grid="ns")
+    lib = cosim.cosim_libcosim(ssp_, stop_time=T)
+    _compare(own_, lib, "libcosim (profileIndex 5)")
+    default = cosim.cosim_slaves(cnc, structure, stop_time=T, grid="ns")
+    assert not np.array_equal(default["cnc.path.feed"], lib["cnc.path.feed"][:len(default["time"])])
+
+
 def test_fmpy_ssp_equals_own_master(own, ssp):
     _compare(own, cosim.cosim_fmpy_ssp(ssp, stop_time=T), "fmpy.ssp")
 

@@ -36,7 +36,7 @@ def run(cnc, program, kind):
         params = {"program": program.read_text(), "machine.profile": kind}
         _cache[key] = fmusim.run_cnc(cnc, params, names=[
             *(f"{a}.command.{q}" for a in fmusim.AXES for q in ("position", "velocity", "acceleration", "jerk")),
-            "path.feed", "path.distance", "program.line", "program.finished"])
+            "path.feed", "path.distance", "status.line", "status.finished"])
     return _cache[key]
 
 
@@ -53,7 +53,7 @@ def last_point(program):
 @pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
 def test_program_runs_to_finished(cnc, program):
     res = run(cnc, program, "scurve7")
-    assert res["program.finished"][-1] == 1.0
+    assert res["status.finished"][-1] == 1.0
     end = [res[f"{a}.command.position"][-1] * 1e3 for a in fmusim.AXES]
     np.testing.assert_allclose(end, last_point(program), atol=1e-9)
     # At the end the command is at rest.
@@ -109,7 +109,7 @@ def _line_run(cnc, inputs=None, override=None):
         params["feedOverride"] = override
     return fmusim.run_cnc(cnc, params, inputs=inputs, names=[
         "x.command.position", "x.command.velocity", "x.command.acceleration", "x.command.jerk",
-        "path.feed", "program.finished"])
+        "path.feed", "status.finished"])
 
 
 def test_feed_override_halves_cruise_feed(cnc):
@@ -199,12 +199,12 @@ def test_bad_program_error_at_initialization(cnc, cli, tmp_path, case):
 
 def test_simulate_fmu_defaults_equal_cli_run(fmus, cli, tmp_path):
     """fmpy's simulate_fmu with the FMU's defaults runs the shipped default program to
-    program.finished, and every tick's command equals the CLI's `run` of the same program and
+    status.finished, and every tick's command equals the CLI's `run` of the same program and
     machine to 1e-12 m."""
     from fmpy import simulate_fmu
-    names = [f"{a}.command.position" for a in fmusim.AXES] + ["program.finished"]
+    names = [f"{a}.command.position" for a in fmusim.AXES] + ["status.finished"]
     res = simulate_fmu(str(fmus[0]), output_interval=1e-3, output=names)
-    assert res["program.finished"][-1], "default stop time covers the default program"
+    assert res["status.finished"][-1], "default stop time covers the default program"
     csv = tmp_path / "ticks.csv"
     out = subprocess.run([cli, "run", str(ROOT / "resources" / "default.ngc"), "--csv", str(csv)],
                          capture_output=True, text=True)
@@ -217,5 +217,5 @@ def test_simulate_fmu_defaults_equal_cli_run(fmus, cli, tmp_path):
     for a in fmusim.AXES:
         fmu = res[f"{a}.command.position"][1:n + 1]
         np.testing.assert_allclose(fmu, ticks[f"{a}_mm"] * 1e-3, rtol=0, atol=1e-12, err_msg=a)
-    i_done = int(np.argmax(res["program.finished"]))
+    i_done = int(np.argmax(res["status.finished"]))
     assert i_done == n, f"FMU finished at row {i_done}, CLI after {n} ticks"

@@ -1,7 +1,7 @@
 //! One FMU instance: the FMI 2.0 Co-Simulation state machine, the rules on which variable may be
 //! set when, the logger, FMU states and their serialization. Plain Rust; abi.rs does the C side.
 
-use crate::{Causality, Model, Type, Value, Variability};
+use crate::{Causality, Model, Type, Value, Variability, VariableInfo};
 use std::ffi::{c_char, c_int, c_void, CString};
 use std::path::PathBuf;
 
@@ -21,7 +21,8 @@ pub enum Status {
 pub type LoggerFn =
     unsafe extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char, ...);
 
-/// States of a co-simulation slave (FMI 2.0, section 4.2.4).
+/// States of a co-simulation slave (FMI 2.0, section 4.2.4). `Error` is terminal: only get*,
+/// status inquiries, reset, free and FMU-state calls are allowed (see `abi::Call::spec`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum State {
     Instantiated,
@@ -51,7 +52,28 @@ pub struct Snapshot<M> {
     pub state: State,
 }
 
-const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x01";
+/// Serialized FMU state: magic "FMI2RS", format version (u16, big-endian), then GUID, time,
+/// slave state and the model's own (bincode) bytes, each length-prefixed and checked on reading.
+const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x02";
+
+/// Why a value is outside what the variable declares (non-finite Real, min/max, enumeration
+/// items), if it is.
+fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<String> {
+    let x = match *value {
+        Value::Real(x) if !x.is_finite() => return Some(format!("{x} is not finite")),
+        Value::Real(x) => x,
+        Value::Integer(n) => n as f64,
+        _ => return None,
+    };
+    let (min, max) = match v.kind {
+        Type::Enumeration(e) => (Some(1.0), Some(M::info().enumerations[e].items.len() as f64)),
+        _ => (v.min, v.max),
+    };
+    let below = min.is_some_and(|m| x < m);
+    let above = max.is_some_and(|m| x > m);
+    let bound = |b: Option<f64>| b.map_or("…".into(), |b| b.to_string());
+    (below || above).then(|| format!("{x} is outside its range {} … {}", bound(min), bound(max)))
+}
 
 pub struct Instance<M: Model> {
     pub name: CString,
@@ -68,6 +90,8 @@ pub struct Instance<M: Model> {
     pub strings: Vec<CString>,
     /// FMU states handed out and not yet freed (checked on Set/Free).
     pub snapshots: Vec<usize>,
+    /// Status of the last fmi2DoStep (fmi2GetStatus(fmi2DoStepStatus)).
+    pub last_step: Status,
 }
 
 // The raw environment pointer belongs to the importer, which may move instances between threads.
@@ -94,6 +118,7 @@ impl<M: Model> Instance<M> {
             categories: [true; LOG_CATEGORIES.len()],
             strings: Vec::new(),
             snapshots: Vec::new(),
+            last_step: Status::Ok,
         }
     }
 
@@ -146,15 +171,6 @@ impl<M: Model> Instance<M> {
         Status::Ok
     }
 
-    /// Refuse a call in a state where the standard does not allow it.
-    pub fn require(&self, function: &str, allowed: &[State]) -> Result<(), Status> {
-        if allowed.contains(&self.state) {
-            Ok(())
-        } else {
-            Err(self.error(&format!("{function}: not allowed in state {:?}", self.state)))
-        }
-    }
-
     /// Index of the variable with this value reference and type family.
     pub fn lookup(&self, function: &str, vr: u32, family: Type) -> Result<usize, Status> {
         let vars = &M::info().variables;
@@ -176,17 +192,8 @@ impl<M: Model> Instance<M> {
         Ok(i)
     }
 
+    /// Read a variable (the state is checked by the caller's entry in the abi table).
     pub fn get(&mut self, function: &str, vr: u32, family: Type) -> Result<Value, Status> {
-        self.require(
-            function,
-            &[
-                State::InitializationMode,
-                State::StepComplete,
-                State::StepFailed,
-                State::Terminated,
-                State::Error,
-            ],
-        )?;
         let i = self.lookup(function, vr, family)?;
         Ok(self.model.get(i))
     }
@@ -194,14 +201,6 @@ impl<M: Model> Instance<M> {
     /// Set with the rules of FMI 2.0: before initialization ends, variables with a start value;
     /// after, inputs and tunable parameters only.
     pub fn set(&mut self, function: &str, vr: u32, family: Type, value: Value) -> Result<(), Status> {
-        self.require(
-            function,
-            &[
-                State::Instantiated,
-                State::InitializationMode,
-                State::StepComplete,
-            ],
-        )?;
         let i = self.lookup(function, vr, family)?;
         let v = &M::info().variables[i];
         let allowed = match self.state {
@@ -220,16 +219,8 @@ impl<M: Model> Instance<M> {
             );
             return Err(self.error(&msg));
         }
-        if let Value::Integer(n) = value {
-            if let Type::Enumeration(e) = v.kind {
-                let items = M::info().enumerations[e].items.len() as i32;
-                if !(1..=items).contains(&n) {
-                    return Err(self.error(&format!(
-                        "{function}: '{}' = {n} is not an item 1 … {items}",
-                        v.name
-                    )));
-                }
-            }
+        if let Some(reason) = out_of_range::<M>(v, &value) {
+            return Err(self.error(&format!("{function}: '{}' = {reason}", v.name)));
         }
         let name = v.name.clone();
         self.model
@@ -290,6 +281,7 @@ impl<M: Model> Instance<M> {
             2 => State::StepComplete,
             3 => State::StepFailed,
             4 => State::Terminated,
+            5 => State::Error,
             _ => return Err("serialized FMU state has an invalid slave state".into()),
         };
         let len = u64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad length")?) as usize;

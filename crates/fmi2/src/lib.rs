@@ -4,8 +4,11 @@
 //! except through the table it describes itself with.
 
 pub mod abi;
+pub mod doc;
 pub mod instance;
 pub mod package;
+pub mod table;
+pub mod units;
 pub mod uri;
 pub mod xml;
 
@@ -70,9 +73,64 @@ pub struct VariableInfo {
     pub unit: Option<String>,
     pub display_unit: Option<String>,
     pub description: String,
+    /// Declared range (Real, Integer), emitted as `min`/`max` in the XML.
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+    /// Outputs: indices (in `ModelInfo::variables`) of the inputs this output depends on
+    /// directly (`Some(vec![])`: none); `None` declares nothing (depends on all).
+    pub dependencies: Option<Vec<usize>>,
 }
 
 impl VariableInfo {
+    /// A row of a model's table; the value reference is assigned by [`ModelInfo::new`].
+    pub fn new(
+        name: impl Into<String>,
+        kind: Type,
+        causality: Causality,
+        variability: Variability,
+        description: impl Into<String>,
+    ) -> Self {
+        VariableInfo {
+            name: name.into(),
+            value_reference: 0,
+            kind,
+            causality,
+            variability,
+            unit: None,
+            display_unit: None,
+            description: description.into(),
+            min: None,
+            max: None,
+            dependencies: None,
+        }
+    }
+
+    /// SI unit from [`units`]; the display unit is the unit's default one (mm for m, …).
+    pub fn unit(mut self, unit: &str) -> Self {
+        self.display_unit = units::default_display(unit).map(str::to_string);
+        self.unit = Some(unit.to_string());
+        self
+    }
+
+    /// Another of the unit's display units.
+    pub fn display(mut self, display_unit: &str) -> Self {
+        self.display_unit = Some(display_unit.to_string());
+        self
+    }
+
+    /// Declared range (either bound may be open).
+    pub fn range(mut self, min: Option<f64>, max: Option<f64>) -> Self {
+        self.min = min;
+        self.max = max;
+        self
+    }
+
+    /// Direct dependencies of an output on inputs (indices into the table).
+    pub fn depends_on(mut self, inputs: Vec<usize>) -> Self {
+        self.dependencies = Some(inputs);
+        self
+    }
+
     /// Parameters and inputs carry a start value (initial = exact); outputs are calculated.
     pub fn has_start(&self) -> bool {
         matches!(self.causality, Causality::Parameter | Causality::Input)
@@ -84,6 +142,20 @@ impl VariableInfo {
 pub struct EnumerationType {
     pub name: String,
     pub items: Vec<(String, String)>,
+}
+
+impl EnumerationType {
+    /// From items (name, description), values 1…n in the given order.
+    pub fn new<'a>(name: &str, items: impl IntoIterator<Item = (&'a str, &'a str)>) -> Self {
+        let items = items
+            .into_iter()
+            .map(|(n, d)| (n.to_string(), d.to_string()))
+            .collect();
+        EnumerationType {
+            name: name.into(),
+            items,
+        }
+    }
 }
 
 /// A display unit of an SI unit: value_display = factor · value + offset.
@@ -110,12 +182,42 @@ pub struct ModelInfo {
     pub guid: String,
     pub description: String,
     pub version: String,
+    pub author: String,
+    pub copyright: String,
+    pub license: String,
     pub variables: Vec<VariableInfo>,
     pub enumerations: Vec<EnumerationType>,
     pub units: Vec<UnitDefinition>,
     pub log_categories: Vec<(String, String)>,
     /// DefaultExperiment: start, stop, tolerance, step size.
     pub default_experiment: (f64, f64, f64, f64),
+}
+
+impl ModelInfo {
+    /// A description from the model's table: value references 1…n in table order, the GUID of
+    /// the table, the units it names; version, author, copyright and license of the crate that
+    /// builds it (override the fields as needed).
+    pub fn new(name: &str, description: &str, mut variables: Vec<VariableInfo>) -> ModelInfo {
+        for (k, v) in variables.iter_mut().enumerate() {
+            v.value_reference = k as u32 + 1;
+        }
+        let units = units::definitions(variables.iter().filter_map(|v| v.unit.as_deref()));
+        ModelInfo {
+            model_name: name.into(),
+            model_identifier: name.into(),
+            guid: guid_of(&variables),
+            description: description.into(),
+            version: String::new(),
+            author: String::new(),
+            copyright: String::new(),
+            license: String::new(),
+            variables,
+            enumerations: Vec::new(),
+            units,
+            log_categories: Vec::new(),
+            default_experiment: (0.0, 1.0, 1e-6, 1e-3),
+        }
+    }
 }
 
 /// A model behind the generic layer. Indices are positions in `info().variables`.
@@ -153,8 +255,8 @@ pub fn guid_of(variables: &[VariableInfo]) -> String {
     let prime: u128 = 0x0000000001000000000000000000013B;
     for v in variables {
         let row = format!(
-            "{}|{}|{:?}|{:?}|{:?}|{:?};",
-            v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit
+            "{}|{}|{:?}|{:?}|{:?}|{:?}|{:?};",
+            v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit, v.dependencies
         );
         for b in row.bytes() {
             h ^= b as u128;
@@ -172,12 +274,21 @@ pub fn guid_of(variables: &[VariableInfo]) -> String {
     )
 }
 
-/// modelDescription.xml of a model, start values read from a model at its defaults.
-pub fn model_description<M: Model>() -> String {
+/// Start values read from a model at its defaults (None for calculated variables).
+pub fn start_values<M: Model>() -> Vec<Option<Value>> {
     let info = M::info();
     let m = M::new(None);
-    let starts: Vec<Option<Value>> = (0..info.variables.len())
+    (0..info.variables.len())
         .map(|i| info.variables[i].has_start().then(|| m.get(i)))
-        .collect();
-    xml::model_description(info, &starts)
+        .collect()
+}
+
+/// modelDescription.xml of a model.
+pub fn model_description<M: Model>() -> String {
+    xml::model_description(M::info(), &start_values::<M>())
+}
+
+/// documentation/index.html of a model: `intro_html` and the table of variables.
+pub fn documentation<M: Model>(intro_html: &str) -> String {
+    doc::html(M::info(), intro_html, &start_values::<M>())
 }

@@ -69,23 +69,26 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))
         .expect("writing to memory");
-    start(
-        &mut w,
-        "fmiModelDescription",
-        &[
-            ("fmiVersion", "2.0".into()),
-            ("modelName", info.model_name.clone()),
-            ("guid", info.guid.clone()),
-            ("description", info.description.clone()),
-            ("version", info.version.clone()),
-            (
-                "generationTool",
-                format!("fmi2 layer of cnc-motion {}", env!("CARGO_PKG_VERSION")),
-            ),
-            ("variableNamingConvention", "structured".into()),
-            ("numberOfEventIndicators", "0".into()),
-        ],
-    );
+    let header: Vec<(&str, String)> = [
+        ("fmiVersion", "2.0".into()),
+        ("modelName", info.model_name.clone()),
+        ("guid", info.guid.clone()),
+        ("description", info.description.clone()),
+        ("version", info.version.clone()),
+        ("author", info.author.clone()),
+        ("copyright", info.copyright.clone()),
+        ("license", info.license.clone()),
+        (
+            "generationTool",
+            format!("fmi2 layer of cnc-motion {}", env!("CARGO_PKG_VERSION")),
+        ),
+        ("variableNamingConvention", "structured".into()),
+        ("numberOfEventIndicators", "0".into()),
+    ]
+    .into_iter()
+    .filter(|(_, v)| !v.is_empty())
+    .collect();
+    start(&mut w, "fmiModelDescription", &header);
     empty(
         &mut w,
         "CoSimulation",
@@ -100,52 +103,8 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
             ("providesDirectionalDerivative", "false".into()),
         ],
     );
-    if !info.units.is_empty() {
-        start(&mut w, "UnitDefinitions", &[]);
-    }
-    for u in &info.units {
-        start(&mut w, "Unit", &[("name", u.name.clone())]);
-        let names = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"];
-        let attrs: Vec<(&str, String)> = names
-            .iter()
-            .zip(u.base)
-            .filter(|(_, e)| *e != 0)
-            .map(|(n, e)| (*n, e.to_string()))
-            .collect();
-        empty(&mut w, "BaseUnit", &attrs);
-        for d in &u.display {
-            let mut a = vec![("name", d.name.clone()), ("factor", real(d.factor))];
-            if d.offset != 0.0 {
-                a.push(("offset", real(d.offset)));
-            }
-            empty(&mut w, "DisplayUnit", &a);
-        }
-        end(&mut w, "Unit");
-    }
-    if !info.units.is_empty() {
-        end(&mut w, "UnitDefinitions");
-    }
-    if !info.enumerations.is_empty() {
-        start(&mut w, "TypeDefinitions", &[]);
-        for e in &info.enumerations {
-            start(&mut w, "SimpleType", &[("name", e.name.clone())]);
-            start(&mut w, "Enumeration", &[]);
-            for (k, (name, desc)) in e.items.iter().enumerate() {
-                empty(
-                    &mut w,
-                    "Item",
-                    &[
-                        ("name", name.clone()),
-                        ("value", (k + 1).to_string()),
-                        ("description", desc.clone()),
-                    ],
-                );
-            }
-            end(&mut w, "Enumeration");
-            end(&mut w, "SimpleType");
-        }
-        end(&mut w, "TypeDefinitions");
-    }
+    unit_definitions(&mut w, info);
+    type_definitions(&mut w, info);
     start(&mut w, "LogCategories", &[]);
     for (name, desc) in LOG_CATEGORIES {
         empty(
@@ -171,27 +130,90 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
         variable(&mut w, info, v, start_values.get(i).cloned().flatten());
     }
     end(&mut w, "ModelVariables");
-    start(&mut w, "ModelStructure", &[]);
-    let outputs: Vec<usize> = (0..info.variables.len())
-        .filter(|&i| info.variables[i].causality == Causality::Output)
-        .collect();
-    if !outputs.is_empty() {
-        start(&mut w, "Outputs", &[]);
-        for i in &outputs {
-            empty(&mut w, "Unknown", &[("index", (i + 1).to_string())]);
-        }
-        end(&mut w, "Outputs");
-        start(&mut w, "InitialUnknowns", &[]);
-        for i in &outputs {
-            empty(&mut w, "Unknown", &[("index", (i + 1).to_string())]);
-        }
-        end(&mut w, "InitialUnknowns");
-    }
-    end(&mut w, "ModelStructure");
+    model_structure(&mut w, info);
     end(&mut w, "fmiModelDescription");
     let mut text = String::from_utf8(w.into_inner()).expect("UTF-8 input");
     text.push('\n');
     text
+}
+
+fn unit_definitions(w: &mut W, info: &ModelInfo) {
+    if !info.units.is_empty() {
+        start(w, "UnitDefinitions", &[]);
+    }
+    for u in &info.units {
+        start(w, "Unit", &[("name", u.name.clone())]);
+        let names = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"];
+        let attrs: Vec<(&str, String)> = names
+            .iter()
+            .zip(u.base)
+            .filter(|(_, e)| *e != 0)
+            .map(|(n, e)| (*n, e.to_string()))
+            .collect();
+        empty(w, "BaseUnit", &attrs);
+        for d in &u.display {
+            let mut a = vec![("name", d.name.clone()), ("factor", real(d.factor))];
+            if d.offset != 0.0 {
+                a.push(("offset", real(d.offset)));
+            }
+            empty(w, "DisplayUnit", &a);
+        }
+        end(w, "Unit");
+    }
+    if !info.units.is_empty() {
+        end(w, "UnitDefinitions");
+    }
+}
+
+fn type_definitions(w: &mut W, info: &ModelInfo) {
+    if !info.enumerations.is_empty() {
+        start(w, "TypeDefinitions", &[]);
+        for e in &info.enumerations {
+            start(w, "SimpleType", &[("name", e.name.clone())]);
+            start(w, "Enumeration", &[]);
+            for (k, (name, desc)) in e.items.iter().enumerate() {
+                empty(
+                    w,
+                    "Item",
+                    &[
+                        ("name", name.clone()),
+                        ("value", (k + 1).to_string()),
+                        ("description", desc.clone()),
+                    ],
+                );
+            }
+            end(w, "Enumeration");
+            end(w, "SimpleType");
+        }
+        end(w, "TypeDefinitions");
+    }
+}
+
+/// Outputs with their declared dependencies (attribute left out: depends on every input), and
+/// the initial unknowns (dependencies not declared).
+fn model_structure(w: &mut W, info: &ModelInfo) {
+    start(w, "ModelStructure", &[]);
+    let outputs: Vec<usize> = (0..info.variables.len())
+        .filter(|&i| info.variables[i].causality == Causality::Output)
+        .collect();
+    if !outputs.is_empty() {
+        start(w, "Outputs", &[]);
+        for &i in &outputs {
+            let mut a = vec![("index", (i + 1).to_string())];
+            if let Some(deps) = &info.variables[i].dependencies {
+                let list: Vec<String> = deps.iter().map(|d| (d + 1).to_string()).collect();
+                a.push(("dependencies", list.join(" ")));
+            }
+            empty(w, "Unknown", &a);
+        }
+        end(w, "Outputs");
+        start(w, "InitialUnknowns", &[]);
+        for i in &outputs {
+            empty(w, "Unknown", &[("index", (i + 1).to_string())]);
+        }
+        end(w, "InitialUnknowns");
+    }
+    end(w, "ModelStructure");
 }
 
 fn variable(w: &mut W, info: &ModelInfo, v: &VariableInfo, start_value: Option<Value>) {
@@ -224,6 +246,14 @@ fn variable(w: &mut W, info: &ModelInfo, v: &VariableInfo, start_value: Option<V
     }
     if let Some(d) = &v.display_unit {
         t.push(("displayUnit", d.clone()));
+    }
+    if matches!(v.kind, Type::Real | Type::Integer) {
+        let n = |x: f64| match v.kind {
+            Type::Integer => (x as i64).to_string(),
+            _ => real(x),
+        };
+        t.extend(v.min.map(|x| ("min", n(x))));
+        t.extend(v.max.map(|x| ("max", n(x))));
     }
     if let (true, Some(s)) = (v.has_start(), start_value) {
         t.push(("start", value_text(&s)));

@@ -5,7 +5,9 @@
 
 pub mod modal;
 
-use fmi2::{Causality, DisplayUnit, ModelInfo, Type, UnitDefinition, Value, Variability, VariableInfo};
+use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
+use fmi2::Variability::{Continuous as CONT, Fixed as FIX};
+use fmi2::{ModelInfo, Type, Value, VariableInfo};
 use modal::{Mode, ModeState};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -71,7 +73,7 @@ impl MachineStructure {
     }
 }
 
-/// What a row of the table reads or writes.
+/// What a row of the table reads or writes: (axis, mode, field) or the axis.
 #[derive(Clone, Copy)]
 enum Slot {
     Mode(usize, usize, usize),
@@ -82,103 +84,51 @@ enum Slot {
     LoadForce(usize),
 }
 
+const NO: Option<f64> = None;
+const ZERO: Option<f64> = Some(0.0);
+
+/// The variables, one row per axis each (see [`fmi2::table::Row`]).
+#[rustfmt::skip]
+const ROWS: &[fmi2::table::Row<Slot>] = &[
+    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 0, 0), "# mode 1: natural frequency"),
+    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 0, 1), "# mode 1: damping ratio"),
+    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 0, 2), "# mode 1: modal mass"),
+    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 1, 0), "# mode 2: natural frequency"),
+    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 1, 1), "# mode 2: damping ratio"),
+    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 1, 2), "# mode 2: modal mass"),
+    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Coupling(0),   "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
+    ("#.driveForce",      Type::Real, IN,  CONT, "N",    NO,   NO, Slot::Force(0),      "force of the # drive on the frame"),
+    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,   NO, Slot::Deflection(0), "tool-point deflection of the frame along #"),
+    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,   NO, Slot::Acceleration(0), "frame acceleration along # (direct feed-through of #.driveForce)"),
+    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,   NO, Slot::LoadForce(0),  "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
+];
+
+impl Slot {
+    fn on_axis(self, i: usize) -> Slot {
+        match self {
+            Slot::Mode(_, k, f) => Slot::Mode(i, k, f),
+            Slot::Coupling(_) => Slot::Coupling(i),
+            Slot::Force(_) => Slot::Force(i),
+            Slot::Deflection(_) => Slot::Deflection(i),
+            Slot::Acceleration(_) => Slot::Acceleration(i),
+            Slot::LoadForce(_) => Slot::LoadForce(i),
+        }
+    }
+}
+
+/// The table expanded; a = Σ (F/m − 2ζω q̇ − ω² q): each axis' acceleration depends directly on
+/// the drive force of the same axis, every other output on no input.
 fn table() -> &'static [(VariableInfo, Slot)] {
     static T: OnceLock<Vec<(VariableInfo, Slot)>> = OnceLock::new();
     T.get_or_init(|| {
-        let mut t = Vec::new();
-        let mut add = |name: String,
-                       kind: Causality,
-                       var: Variability,
-                       unit: Option<&str>,
-                       desc: String,
-                       slot: Slot| {
-            let vr = t.len() as u32 + 1;
-            t.push((
-                VariableInfo {
-                    name,
-                    value_reference: vr,
-                    kind: Type::Real,
-                    causality: kind,
-                    variability: var,
-                    unit: unit.map(str::to_string),
-                    display_unit: (unit == Some("m")).then(|| "mm".to_string()),
-                    description: desc,
-                },
-                slot,
-            ));
-        };
-        for (i, a) in AXES.iter().enumerate() {
-            for k in 0..MODES {
-                let n = k + 1;
-                add(
-                    format!("{a}.mode{n}.frequency"),
-                    Causality::Parameter,
-                    Variability::Fixed,
-                    Some("Hz"),
-                    format!("{a} mode {n}: natural frequency"),
-                    Slot::Mode(i, k, 0),
-                );
-                add(
-                    format!("{a}.mode{n}.damping"),
-                    Causality::Parameter,
-                    Variability::Fixed,
-                    Some("1"),
-                    format!("{a} mode {n}: damping ratio"),
-                    Slot::Mode(i, k, 1),
-                );
-                add(
-                    format!("{a}.mode{n}.mass"),
-                    Causality::Parameter,
-                    Variability::Fixed,
-                    Some("kg"),
-                    format!("{a} mode {n}: modal mass"),
-                    Slot::Mode(i, k, 2),
-                );
-            }
-            add(
-                format!("{a}.couplingMass"),
-                Causality::Parameter,
-                Variability::Fixed,
-                Some("kg"),
-                format!("mass riding on the frame along {a} (table); loadForce = −couplingMass·acceleration"),
-                Slot::Coupling(i),
-            );
-        }
-        for (i, a) in AXES.iter().enumerate() {
-            add(
-                format!("{a}.driveForce"),
-                Causality::Input,
-                Variability::Continuous,
-                Some("N"),
-                format!("force of the {a} drive on the frame"),
-                Slot::Force(i),
-            );
-        }
-        for (i, a) in AXES.iter().enumerate() {
-            add(
-                format!("{a}.deflection"),
-                Causality::Output,
-                Variability::Continuous,
-                Some("m"),
-                format!("tool-point deflection of the frame along {a}"),
-                Slot::Deflection(i),
-            );
-            add(
-                format!("{a}.acceleration"),
-                Causality::Output,
-                Variability::Continuous,
-                Some("m/s2"),
-                format!("frame acceleration along {a}"),
-                Slot::Acceleration(i),
-            );
-            add(
-                format!("{a}.loadForce"),
-                Causality::Output,
-                Variability::Continuous,
-                Some("N"),
-                format!("inertial force of the moving frame on the {a} table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion {a}.loadForce"),
-                Slot::LoadForce(i),
-            );
+        use fmi2::table::{expand, index_of, variable};
+        let mut t = expand(ROWS, &AXES, |row, i, axis| {
+            vec![(variable(row, axis), row.7.on_axis(i))]
+        });
+        for a in AXES {
+            let force = index_of(&t, &format!("{a}.driveForce"));
+            let acceleration = index_of(&t, &format!("{a}.acceleration")).expect("in the table");
+            t[acceleration].0.dependencies = force.map(|f| vec![f]);
         }
         t
     })
@@ -191,38 +141,14 @@ impl fmi2::Model for MachineStructureFmu {
     fn info() -> &'static ModelInfo {
         static INFO: OnceLock<ModelInfo> = OnceLock::new();
         INFO.get_or_init(|| {
-            let variables: Vec<VariableInfo> = table().iter().map(|(v, _)| v.clone()).collect();
-            let u = |name: &str, base: [i32; 8], display: Vec<DisplayUnit>| UnitDefinition {
-                name: name.into(),
-                base,
-                display,
-            };
+            let variables = table().iter().map(|(v, _)| v.clone()).collect();
+            let description = "Modal model of a machine frame driven by the axis drive forces";
             ModelInfo {
-                model_name: "MachineStructure".into(),
-                model_identifier: "MachineStructure".into(),
-                guid: fmi2::guid_of(&variables),
-                description: "Modal model of a machine frame driven by the axis drive forces".into(),
                 version: env!("CARGO_PKG_VERSION").into(),
-                variables,
-                enumerations: Vec::new(),
-                units: vec![
-                    u(
-                        "m",
-                        [0, 1, 0, 0, 0, 0, 0, 0],
-                        vec![DisplayUnit {
-                            name: "mm".into(),
-                            factor: 1e3,
-                            offset: 0.0,
-                        }],
-                    ),
-                    u("m/s2", [0, 1, -2, 0, 0, 0, 0, 0], vec![]),
-                    u("N", [1, 1, -2, 0, 0, 0, 0, 0], vec![]),
-                    u("kg", [1, 0, 0, 0, 0, 0, 0, 0], vec![]),
-                    u("Hz", [0, 0, -1, 0, 0, 0, 0, 0], vec![]),
-                    u("1", [0; 8], vec![]),
-                ],
-                log_categories: Vec::new(),
-                default_experiment: (0.0, 1.0, 1e-6, 0.001),
+                author: "cnc-motion authors".into(),
+                copyright: "Copyright (c) 2026 the cnc-motion authors".into(),
+                license: "MIT".into(),
+                ..ModelInfo::new("MachineStructure", description, variables)
             }
         })
     }
@@ -281,12 +207,14 @@ impl fmi2::Model for MachineStructureFmu {
         Ok(())
     }
 
+    /// bincode of the whole model (fixed-size plain data; the layer adds magic, version, GUID
+    /// and length).
     fn serialize(&self) -> Vec<u8> {
-        serde_json::to_vec(&self.0).unwrap_or_default()
+        bincode::serialize(&self.0).unwrap_or_default()
     }
 
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String> {
-        self.0 = serde_json::from_slice(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
+        self.0 = bincode::deserialize(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
         Ok(())
     }
 }
@@ -296,28 +224,34 @@ pub fn model_description() -> String {
     fmi2::model_description::<MachineStructureFmu>()
 }
 
+/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/) and the fmi2 crate.
+pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
+    use fmi2::package::{manifest, sources_readme, tree};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("Cargo.toml")).map_err(|e| format!("Cargo.toml: {e}"))?;
+    let cargo = manifest(&text, &[], &[("../fmi2", "fmi2")]) + "\n[workspace]\n";
+    let fmi2_toml = std::fs::read(root.join("../fmi2/Cargo.toml")).map_err(|e| format!("fmi2: {e}"))?;
+    let mut files = vec![
+        ("Cargo.toml".to_string(), cargo.into_bytes()),
+        ("fmi2/Cargo.toml".to_string(), fmi2_toml),
+        sources_readme("MachineStructure", "machine_structure"),
+    ];
+    files.extend(tree(&root.join("src"), "src")?);
+    files.extend(tree(&root.join("../fmi2/src"), "fmi2/src")?);
+    Ok(files)
+}
+
 /// Write MachineStructure.fmu from the built shared library `lib`.
 pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
     let xml = model_description();
-    let mut doc = String::from(
-        "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>MachineStructure</title></head><body>\
-         <h1>MachineStructure</h1><p>Modal model of a machine frame (two modes per direction, exact \
-         zero-order-hold discretisation, any step size). Inputs: <code>x.driveForce</code> … from \
-         CncMotion; outputs: <code>x.deflection</code>, <code>x.acceleration</code>, <code>x.loadForce</code> \
-         (back to CncMotion <code>x.loadForce</code> for two-way coupling). Defaults: a small mill \
-         (45/120 Hz in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json.</p>\
-         <table border=\"1\"><tr><th>name</th><th>causality</th><th>unit</th><th>description</th></tr>",
+    let doc = fmi2::documentation::<MachineStructureFmu>(
+        "<p>Modal model of a machine frame (two modes per direction, exact zero-order-hold \
+         discretisation, any step size). Inputs: <code>x.driveForce</code> … from CncMotion; outputs: \
+         <code>x.deflection</code>, <code>x.acceleration</code>, <code>x.loadForce</code> (back to \
+         CncMotion <code>x.loadForce</code> for two-way coupling). Only <code>x.acceleration</code> \
+         depends directly on an input (<code>x.driveForce</code>). Defaults: a small mill (45/120 Hz \
+         in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json.</p>",
     );
-    for (v, _) in table() {
-        doc.push_str(&format!(
-            "<tr><td><code>{}</code></td><td>{:?}</td><td>{}</td><td>{}</td></tr>",
-            v.name,
-            v.causality,
-            v.unit.as_deref().unwrap_or(""),
-            v.description
-        ));
-    }
-    doc.push_str("</table></body></html>\n");
     fmi2::package::write_fmu(
         path,
         &fmi2::package::FmuFiles {
@@ -326,6 +260,7 @@ pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
             shared_library: lib,
             resources: Vec::new(),
             documentation_html: &doc,
+            sources: sources()?,
         },
     )
 }
