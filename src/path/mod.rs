@@ -241,7 +241,8 @@ pub struct PathBlock {
 const MIN_LENGTH: f64 = 1e-12;
 /// Largest share of a programmed line a constant-speed transition may replace at one end.
 const TRANSITION_SHARE: f64 = 0.4;
-/// Margin on the sampled derivative bounds of a quintic transition.
+/// Margin on the sampled derivative bounds of a quintic transition (seed-004 mode only; the
+/// smooth mode's bounds are guaranteed).
 const BLEND_SPEED_MARGIN: f64 = 0.99;
 
 /// The segment held back, with what the next corner needs to know.
@@ -546,17 +547,7 @@ impl PathBuilder {
             (Segment::Blend(b), v)
         };
         let v = v.min(feeds);
-        // Where passing at v is slower than a stop (rest to rest over the transition with the
-        // axis jerk alone: four phases of T_j, L = 2·J·T_j³), stop instead.
-        let j = self
-            .machine
-            .axes
-            .iter()
-            .map(|a| a.max_jerk)
-            .fold(f64::INFINITY, f64::min);
-        let length = segment.length();
-        let slower_than_a_stop = length >= v * 4.0 * (length / (2.0 * j)).cbrt();
-        (v > 0.0 && v.is_finite() && !slower_than_a_stop).then_some((segment, v))
+        (v > 0.0 && v.is_finite()).then_some((segment, v))
     }
 }
 
