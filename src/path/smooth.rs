@@ -194,6 +194,8 @@ pub struct SmoothBuilder {
     chain_straight: bool,
     /// Largest |p'| over the chain: the feed in the chain parameter is the feed over it.
     chain_sigma: f64,
+    /// The limits of the chain's only piece, while it has one (computed when it was added).
+    chain_single: Option<Limits>,
 }
 
 impl SmoothBuilder {
@@ -208,6 +210,7 @@ impl SmoothBuilder {
             chain_class: 0.0,
             chain_straight: true,
             chain_sigma: 1.0,
+            chain_single: None,
         }
     }
 
@@ -373,27 +376,22 @@ impl SmoothBuilder {
         let b = jet_at(&next.piece, 0.0);
         let joined = norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS;
         if joined {
-            self.piece(held.piece, held.last.feed, false, m, out);
+            self.piece(held.piece, held.last.feed, false, None, m, out);
             self.held = Some(next);
             return;
         }
         match transition(&held, &next, m) {
-            Some((d_held, d_next, h)) => {
+            Some((d_held, d_next, h, limits)) => {
                 held.piece.u1 -= d_held;
                 next.piece.u0 += d_next;
-                self.piece(held.piece, held.last.feed, false, m, out);
+                self.piece(held.piece, held.last.feed, false, None, m, out);
                 let feed = held.last.feed.min(next.first.feed);
-                self.piece(
-                    Piece::whole(Curve::Hermite(h), held.last.line),
-                    feed,
-                    false,
-                    m,
-                    out,
-                );
+                let piece = Piece::whole(Curve::Hermite(h), held.last.line);
+                self.piece(piece, feed, false, Some(limits), m, out);
                 self.held = Some(next);
             }
             None => {
-                self.piece(held.piece, held.last.feed, true, m, out);
+                self.piece(held.piece, held.last.feed, true, None, m, out);
                 self.held = Some(next);
             }
         }
@@ -401,27 +399,37 @@ impl SmoothBuilder {
 
     fn flush_held(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
         if let Some(held) = self.held.take() {
-            self.piece(held.piece, held.last.feed, true, m, out);
+            self.piece(held.piece, held.last.feed, true, None, m, out);
         }
         self.close_chain(0.0, m, out);
     }
 
     /// Stage 3: add a piece to the chain; `stop` after it.
-    fn piece(&mut self, piece: Piece, feed: f64, stop: bool, m: &Machine, out: &mut Vec<PathBlock>) {
+    /// `known`: the piece's own limits if already computed (`piece_limits`).
+    fn piece(
+        &mut self,
+        piece: Piece,
+        feed: f64,
+        stop: bool,
+        known: Option<Limits>,
+        m: &Machine,
+        out: &mut Vec<PathBlock>,
+    ) {
         if piece.length() > MIN_PIECE {
             let mut cells = Vec::new();
             piece.curve.cells(|c| cells.push(c));
-            let b = max_bounds(&cells);
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
             // The speed class is the piece's own v_max with its tangential budget, so a chain
             // never runs slower than its slowest piece would alone (by more than the ratio).
-            let class = if straight {
-                super::constant_speed_limit(&b, m).min(feed / sigma)
+            let own = if straight {
+                None
             } else {
-                let k = norm(b[1]);
-                let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-                chain_limits(&cells, rho, feed / sigma, piece.length(), m).v_max
+                Some(known.unwrap_or_else(|| piece_limits(&cells, piece.length(), feed / sigma, m)))
+            };
+            let class = match own {
+                Some(l) => l.v_max,
+                None => super::constant_speed_limit(&max_bounds(&cells), m).min(feed / sigma),
             };
             let fits = !self.chain.is_empty()
                 && feed == self.chain_feed
@@ -436,6 +444,9 @@ impl SmoothBuilder {
                 self.chain_straight = straight;
                 self.cells.clear();
                 self.chain_sigma = 1.0;
+                self.chain_single = own;
+            } else {
+                self.chain_single = None;
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
@@ -462,10 +473,11 @@ impl SmoothBuilder {
                 (Segment::Line(line), line_limits(line.direction(), m), 1.0)
             }
             _ => {
-                let k = norm(max_bounds(&self.cells)[1]);
-                let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
                 let v_cap = self.chain_feed / self.chain_sigma;
-                let limits = chain_limits(&self.cells, rho, v_cap, chain.length(), m);
+                let limits = match self.chain_single.take() {
+                    Some(l) if chain.pieces.len() == 1 => l,
+                    _ => piece_limits(&self.cells, chain.length(), v_cap, m),
+                };
                 (Segment::Chain(chain), limits, self.chain_sigma)
             }
         };
@@ -580,23 +592,28 @@ fn chain_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, length: f64, m: &Mach
         .expect("shares are tried")
 }
 
-/// Whether running through transition `h` beats stopping at the corner: a tiny sharp transition
-/// allows so little speed that its time at that speed exceeds the rest-to-rest time over its
-/// length with the axis jerk alone (four phases of T_j, L = 2·J·T_j³).
-fn faster_than_a_stop(h: &Hermite, m: &Machine) -> bool {
+/// The limits of a piece (or chain) with bound cells `cells`, of `length`, capped at `v_cap`.
+fn piece_limits(cells: &[[Vec3; 3]], length: f64, v_cap: f64, m: &Machine) -> Limits {
+    let k = norm(max_bounds(cells)[1]);
+    let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
+    chain_limits(cells, rho, v_cap, length, m)
+}
+
+/// The limits of transition `h` at `feed` if running through it beats stopping at the corner:
+/// a tiny sharp transition allows so little speed that its time at that speed exceeds the
+/// rest-to-rest time over its length with the axis jerk alone (four phases of T_j, L = 2·J·T_j³).
+fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<Limits> {
     let mut cells = Vec::new();
     h.cells(|c| cells.push(c));
-    let k = norm(max_bounds(&cells)[1]);
-    let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-    let v = chain_limits(&cells, rho, m.max_feed, h.length(), m).v_max;
+    let limits = piece_limits(&cells, h.length(), feed / h.speed_bound().max(1.0), m);
     let j = m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min);
     let t_stop = 4.0 * (h.length() / (2.0 * j)).cbrt();
-    h.length() < v * t_stop
+    (h.length() < limits.v_max * t_stop).then_some(limits)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
 /// (stop) at a reversal or when no cut keeps the tolerance.
-fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, f64, Hermite)> {
+fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, f64, Hermite, Limits)> {
     let end = jet_at(&held.piece, held.piece.length());
     let start = jet_at(&next.piece, 0.0);
     let (t_in, t_out) = (unit(end.d1), unit(start.d1));
@@ -635,7 +652,8 @@ fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, f64, Hermit
         // Parameter speed 1 at both ends: λ is the cut length on both sides.
         let h = Hermite::new(a, b, 2.0 * d);
         if lines || within_tolerance(&h, &held.last.source, &next.first.source, tol) {
-            return faster_than_a_stop(&h, m).then_some((d, d, h));
+            let feed = held.last.feed.min(next.first.feed);
+            return faster_than_a_stop(&h, feed, m).map(|limits| (d, d, h, limits));
         }
         d *= SHRINK;
     }
