@@ -187,7 +187,7 @@ impl fmi2::Model for CncMotionFmu {
             engine: m
                 .engine
                 .as_ref()
-                .map(|e| (e.program().to_string(), e.save_state())),
+                .map(|e| (e.program().text().unwrap_or_default().to_string(), e.save_state())),
         };
         serde_json::to_vec(&state).unwrap_or_default()
     }

@@ -159,7 +159,7 @@ impl CncMotion {
             } else {
                 path
             };
-            let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+            let text = crate::gcode::source::read_program_file(&path, &self.program_file)?;
             (text, self.program_file.clone())
         };
         let engine = Engine::new(Arc::from(text), &name, &self.machine)
@@ -388,6 +388,16 @@ pub fn variables() -> Vec<Variable> {
         0,
         |m, _i| m.chord_tolerance,
         |m, _j, x| m.chord_tolerance = positive("machine.chordTolerance", x)?
+    );
+    real_param!(
+        v,
+        "machine.arcRadiusTolerance",
+        Some("m"),
+        Some("mm"),
+        "arc end point radius mismatch accepted (G20 programs: 2.54 times it), or 0.1 % of the radius",
+        0,
+        |m, _i| m.arc_radius_tolerance,
+        |m, _j, x| m.arc_radius_tolerance = positive("machine.arcRadiusTolerance", x)?
     );
     real_param!(
         v,

@@ -210,7 +210,7 @@ fn full_run_of_the_default_program_equals_the_engine() {
     // The same program and machine through the library: outputs must be identical.
     let text = include_str!("../resources/default.ngc");
     let machine = cnc_motion::config::Machine::default();
-    let mut engine = cnc_motion::engine::Engine::new(text.into(), "default.ngc", &machine)
+    let mut engine = cnc_motion::engine::Engine::new(text, "default.ngc", &machine)
         .unwrap()
         .with_servo(true);
     let mut t = 0.0;

@@ -72,6 +72,10 @@ pub struct Machine {
     pub path_tolerance: f64,
     /// Chord error allowed on arcs (m).
     pub chord_tolerance: f64,
+    /// Arc end points may miss the circle by this much (m, G21; × 2.54 in G20 programs) or by
+    /// 0.1 % of the radius.
+    #[serde(default = "default_arc_tolerance")]
+    pub arc_radius_tolerance: f64,
     /// Largest feed, also the rapid (G0) feed (m/s).
     pub max_feed: f64,
     /// Optional path-level acceleration and jerk limits, on top of the axes' (m/s², m/s³).
@@ -92,6 +96,7 @@ impl Default for Machine {
             corner: CornerMode::Polynomial,
             path_tolerance: 0.01e-3,
             chord_tolerance: 0.001e-3,
+            arc_radius_tolerance: crate::gcode::DEFAULT_ARC_TOLERANCE_M,
             max_feed: 6000.0 / 60.0 * 1e-3,
             max_path_acceleration: None,
             max_path_jerk: None,
@@ -104,6 +109,10 @@ impl Default for Machine {
             ],
         }
     }
+}
+
+fn default_arc_tolerance() -> f64 {
+    crate::gcode::DEFAULT_ARC_TOLERANCE_M
 }
 
 /// `[axis.x]` in the machine file.
@@ -141,6 +150,7 @@ pub struct MachineFile {
     pub corner: Option<CornerMode>,
     pub path_tolerance_mm: Option<f64>,
     pub chord_tolerance_mm: Option<f64>,
+    pub arc_radius_tolerance_mm: Option<f64>,
     pub max_feed_mm_min: Option<f64>,
     pub max_path_acceleration_mm_s2: Option<f64>,
     pub max_path_jerk_mm_s3: Option<f64>,
@@ -184,6 +194,9 @@ impl Machine {
         }
         if let Some(v) = f.chord_tolerance_mm {
             m.chord_tolerance = v * MM;
+        }
+        if let Some(v) = f.arc_radius_tolerance_mm {
+            m.arc_radius_tolerance = v * MM;
         }
         if let Some(v) = f.max_feed_mm_min {
             m.max_feed = v * MM_MIN;
