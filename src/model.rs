@@ -183,7 +183,10 @@ impl CncMotion {
     pub fn do_step(&mut self, h: f64) -> Result<(), String> {
         self.apply_inputs();
         match self.engine.as_mut() {
-            Some(e) => e.advance(h).map_err(|e| e.to_string()),
+            Some(e) => {
+                e.advance(h).map_err(|e| e.to_string())?;
+                crate::config::ranges::check_outputs(e)
+            }
             None => Err("the model is not initialized".into()),
         }
     }
@@ -571,10 +574,7 @@ pub fn variables() -> Vec<Variable> {
             access: Access::Real(
                 |c, i| c.load_force[i],
                 Some(|c, i, x| {
-                    if !x.is_finite() {
-                        return Err(format!("loadForce must be finite, got {x}"));
-                    }
-                    c.load_force[i] = x;
+                    c.load_force[i] = crate::config::ranges::check_load_force(x)?;
                     Ok(())
                 }),
             ),

@@ -110,6 +110,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     let mut n: u64 = 0;
     while !engine.finished() && engine.time() < args.max_time {
         let tick = *engine.step().map_err(|e| e.to_string())?;
+        cnc_motion::config::ranges::check_outputs(&engine).map_err(|m| format!("{}: {m}", args.program))?;
         v.take(tick.v);
         a.take(tick.a);
         j.take(tick.j);
