@@ -145,3 +145,34 @@ fn max_time_names_the_line_and_the_reason() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The CLI reproductions: exit 2 with the place, never exit 0 with `null` positions.
+#[test]
+fn cli_refuses_overflowing_numbers_with_exit_2() {
+    let dir = std::env::temp_dir().join(format!("cnc-overflow-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let nines = "9".repeat(400);
+    for (k, (text, want)) in [
+        (
+            format!("G1 X{nines}\n"),
+            ":1:4: X: number 9999999999999999… (400 digits) out of range",
+        ),
+        (format!("G21 F100\nG1 X2{}\n", "0".repeat(157)), ":2:4: X2"),
+        (format!("G21 F100\nG2 X2 Y0 I1 J{nines}\n"), ":2:13: J: number"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let path = dir.join(format!("p{k}.ngc"));
+        std::fs::write(&path, text).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_cnc-motion"))
+            .args(["run", path.to_str().unwrap(), "--json"])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.starts_with(&format!("{}{want}", path.display())), "{err}");
+        assert!(out.stdout.is_empty());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
