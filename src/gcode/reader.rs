@@ -252,25 +252,7 @@ impl Reader {
         let mut block = None;
         if let Some((m, col)) = motion {
             self.motion = Some(m);
-            let mut to = self.position;
-            for (i, a) in axes.iter().enumerate() {
-                if let Some((v, c)) = a {
-                    to[i] = if self.absolute {
-                        v * self.unit
-                    } else {
-                        self.position[i] + v * self.unit
-                    };
-                    if to[i].abs() > check::MAX_COORDINATE_M {
-                        let msg = format!(
-                            "{} moves the axis to {} mm: out of range (|position| ≤ {} mm)",
-                            [b'X', b'Y', b'Z'][i] as char,
-                            to[i] * 1e3,
-                            check::MAX_COORDINATE_M * 1e3
-                        );
-                        return Err(self.error(line, *c, msg));
-                    }
-                }
-            }
+            let to = self.target(line, &axes)?;
             if m != 0 && self.feed <= 0.0 && (any_axis || m >= 2) {
                 return Err(self.error(line, col, format!("G{m} with no feed rate: F was never set")));
             }
@@ -296,6 +278,30 @@ impl Reader {
                 self.block(line, Motion::Stop(kind))
             }),
         })
+    }
+
+    /// End point of a motion from the axis words (G90/G91), each within the coordinate range.
+    fn target(&self, line: u32, axes: &[Option<(f64, u32)>; 3]) -> Result<Vec3, ProgramError> {
+        let mut to = self.position;
+        for (i, a) in axes.iter().enumerate() {
+            if let Some((v, c)) = a {
+                to[i] = if self.absolute {
+                    v * self.unit
+                } else {
+                    self.position[i] + v * self.unit
+                };
+                if to[i].abs() > check::MAX_COORDINATE_M {
+                    let msg = format!(
+                        "{} moves the axis to {} mm: out of range (|position| ≤ {} mm)",
+                        [b'X', b'Y', b'Z'][i] as char,
+                        to[i] * 1e3,
+                        check::MAX_COORDINATE_M * 1e3
+                    );
+                    return Err(self.error(line, *c, msg));
+                }
+            }
+        }
+        Ok(to)
     }
 
     /// A line with a motion and M0/M1/M2/M30: the motion first, the stop after it.
@@ -571,9 +577,7 @@ impl Reader {
         }
         Ok(codes)
     }
-}
 
-impl Reader {
     /// The absolute arc tolerance in force: the machine's for G21, 2.54 times it for G20
     /// (0.028 mm → 0.0028 in, as LinuxCNC's two constants).
     fn arc_tolerance_abs(&self) -> f64 {
