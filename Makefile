@@ -6,7 +6,7 @@ CARGO  ?= cargo
 # Binaries follow CARGO_TARGET_DIR when it is set; the FMUs always go to target/fmu.
 BIN    := $(or $(CARGO_TARGET_DIR),target)/release
 
-.PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep
+.PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep fuzz
 
 all: build
 
@@ -48,6 +48,14 @@ test-rust:
 
 test-python: fmu
 	$(PY) -m pytest -q tests/python
+
+# Fresh seeds, more cases: every property test with a new random seed (PROPTEST_RNG_SEED unset),
+# then the fuzz harness of tests/fuzz.rs with FUZZ_CASES mutated programs and machine files on a
+# new seed (printed, so a failure can be replayed with CNC_FUZZ_SEED=...).
+FUZZ_CASES ?= 50000
+fuzz:
+	env -u PROPTEST_RNG_SEED $(CARGO) test --workspace --release
+	env -u CNC_FUZZ_SEED CNC_FUZZ_CASES=$(FUZZ_CASES) $(CARGO) test --release --test fuzz -- --nocapture
 
 # The FMU benchmark loads target/release/libcnc_motion.so: build the libraries first.
 bench:

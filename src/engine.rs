@@ -4,7 +4,7 @@
 use crate::config::Machine;
 use crate::error::ProgramError;
 use crate::feed::{self, BlockRequest, FeedLaw, Profile};
-use crate::gcode::{Motion, Reader};
+use crate::gcode::{Motion, ProgramSource, Reader};
 use crate::interp::{Interpolator, Tick};
 use crate::path::Segment;
 use crate::path::{PathBlock, PathBuilder};
@@ -13,7 +13,6 @@ use crate::servo::{AxisCommand, AxisState, ServoAxis};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
-use std::sync::Arc;
 
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
 const STATE_VERSION: u32 = 2;
@@ -26,7 +25,7 @@ const QUEUE_TARGET: usize = 8;
 pub struct Engine {
     machine: Machine,
     #[serde(skip)]
-    program: Arc<str>,
+    program: ProgramSource,
     reader: Reader,
     builder: PathBuilder,
     planner: Planner,
@@ -60,14 +59,21 @@ pub struct Engine {
 impl Engine {
     /// Checks the whole program first (streaming, nothing kept), so that a bad program fails here
     /// with `file:line:col: message`, before any motion.
-    pub fn new(program: Arc<str>, file: &str, machine: &Machine) -> Result<Engine, ProgramError> {
-        crate::gcode::validate(program.clone(), file)?;
+    pub fn new(
+        program: impl Into<ProgramSource>,
+        file: &str,
+        machine: &Machine,
+    ) -> Result<Engine, ProgramError> {
+        let program = program.into();
         let start = [0.0; 3];
+        let reader =
+            Reader::new(program.clone(), file, start).with_arc_tolerance(machine.arc_radius_tolerance);
+        crate::gcode::validate_with(reader.clone())?;
         let interp = Interpolator::new(start);
         let tick = interp.sample(0.0, false);
         let mut engine = Engine {
             machine: machine.clone(),
-            reader: Reader::new(program.clone(), file, start),
+            reader,
             program,
             builder: PathBuilder::new(machine),
             planner: Planner::new(machine.profile, machine.lookahead_blocks),
@@ -111,7 +117,7 @@ impl Engine {
         &self.machine
     }
 
-    pub fn program(&self) -> &Arc<str> {
+    pub fn program(&self) -> &ProgramSource {
         &self.program
     }
 
@@ -163,6 +169,11 @@ impl Engine {
         let along = crate::path::dot(e, u);
         let normal = crate::path::sub(e, crate::path::scale(u, along));
         crate::path::norm(normal)
+    }
+
+    /// The block being executed and the path time left in it (s), None between blocks.
+    pub fn executing(&self) -> Option<(&PathBlock, f64)> {
+        self.interp.current().map(|(p, left)| (&p.block, left))
     }
 
     pub fn finished(&self) -> bool {

@@ -84,7 +84,7 @@ impl fmi2::Model for CncMotionFmu {
             .0
             .engine
             .as_ref()
-            .map(|e| (e.program().to_string(), e.save_state()));
+            .map(|e| (e.program().text().unwrap_or_default().to_string(), e.save_state()));
         bincode::serialize(&(STATE_VERSION, &self.0, engine)).unwrap_or_default()
     }
 

@@ -55,7 +55,7 @@ pub enum Slot {
     Program,
     ProgramFile,
     /// interpolationPeriod, pathTolerance, chordTolerance, maxFeed, maxPathAcceleration,
-    /// maxPathJerk, maxSnap, maxTransitionJerk.
+    /// maxPathJerk, maxSnap, maxTransitionJerk, arcRadiusTolerance.
     Machine(usize),
     Lookahead,
     Profile,
@@ -101,6 +101,7 @@ pub const ROWS: &[Row] = &[
     ("machine.maxPathJerk",         REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Machine(5),       "path jerk limit on top of the axes' (0: none)"),
     ("machine.maxSnap",             REAL,    PAR, FIX,  "m/s4", ZERO, NO,        Slot::Machine(6),       "snap limit (jerk15)"),
     ("machine.maxTransitionJerk",   REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Machine(7),       "axis jerk in constant-speed corner transitions (polynomial, circular; 0: the axes' own)"),
+    ("machine.arcRadiusTolerance",  REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(8),       "arc end point radius mismatch accepted (G20 programs: 2.54 times it), or 0.1 % of the radius"),
     ("machine.lookaheadBlocks",     INT,     PAR, FIX,  "",     Some(2.0), Some(1e6), Slot::Lookahead,   "look-ahead window (segments)"),
     ("machine.profile",             ENUM(0), PAR, FIX,  "",     NO,   NO,        Slot::Profile,          "acc/dec law"),
     ("machine.profileIndex",        INT,     PAR, FIX,  "",     ZERO, NO,        Slot::ProfileIndex,     "acc/dec law as an Integer (importers without Enumerations): 0 keeps machine.profile, 1… its items"),
@@ -274,6 +275,7 @@ impl CncMotion {
                     m.max_path_jerk.unwrap_or(0.0),
                     m.max_snap,
                     m.max_transition_jerk.unwrap_or(0.0),
+                    m.arc_radius_tolerance,
                 ][k],
             ),
             Slot::Lookahead => Value::Integer(m.lookahead_blocks as i32),
@@ -338,7 +340,8 @@ impl CncMotion {
                 4 => m.max_path_acceleration = optional(x)?,
                 5 => m.max_path_jerk = optional(x)?,
                 6 => m.max_snap = positive(x)?,
-                _ => m.max_transition_jerk = optional(x)?,
+                7 => m.max_transition_jerk = optional(x)?,
+                _ => m.arc_radius_tolerance = positive(x)?,
             },
             (Slot::Lookahead, Value::Integer(n)) => m.lookahead_blocks = n as usize,
             (Slot::Profile, Value::Integer(n)) => m.profile = item(&ProfileKind::ALL, n)?,
@@ -361,7 +364,9 @@ impl CncMotion {
             (Slot::ServoEnabled, Value::Boolean(b)) => self.servo_enabled = b,
             (Slot::FeedOverride, Value::Real(x)) => self.feed_override = x,
             (Slot::FeedHold, Value::Boolean(b)) => self.feed_hold = b,
-            (Slot::LoadForce(i), Value::Real(x)) => self.load_force[i] = x,
+            (Slot::LoadForce(i), Value::Real(x)) => {
+                self.load_force[i] = crate::config::ranges::check_load_force(x)?
+            }
             _ => return Err("cannot be set".into()),
         }
         Ok(())
@@ -384,7 +389,7 @@ impl CncMotion {
                 Some(dir) => dir.join(&self.program_file),
                 None => PathBuf::from(&self.program_file),
             };
-            let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+            let text = crate::gcode::source::read_program_file(&path, &self.program_file)?;
             (text, self.program_file.clone())
         };
         let engine = Engine::new(Arc::from(text), &name, &self.machine).map_err(|e| e.to_string())?;
@@ -398,6 +403,7 @@ impl CncMotion {
         e.set_feed_override(self.feed_override);
         e.set_feed_hold(self.feed_hold);
         e.set_load_force(self.load_force);
-        e.advance(h).map_err(|e| e.to_string())
+        e.advance(h).map_err(|e| e.to_string())?;
+        crate::config::ranges::check_outputs(e)
     }
 }

@@ -210,7 +210,7 @@ fn full_run_of_the_default_program_equals_the_engine() {
     // The same program and machine through the library: outputs must be identical.
     let text = include_str!("../resources/default.ngc");
     let machine = cnc_motion::config::Machine::default();
-    let mut engine = cnc_motion::engine::Engine::new(text.into(), "default.ngc", &machine)
+    let mut engine = cnc_motion::engine::Engine::new(text, "default.ngc", &machine)
         .unwrap()
         .with_servo(true);
     let mut t = 0.0;
@@ -347,4 +347,51 @@ fn bad_programs_fail_initialization_with_their_place() {
         assert_eq!(fmu.init(c, Some("G21 G1 X1 F600\nM30\n")), OK);
         fmu.free(c);
     }
+}
+
+/// Issue 11 through the C ABI: each extreme parameter is refused with a logged "out of range"
+/// (at fmi2SetReal or fmi2ExitInitializationMode), fast; none reaches a hanging fmi2DoStep.
+#[test]
+fn extreme_parameters_are_refused_through_the_c_abi() {
+    let fmu = Fmu::load();
+    let set = sym!(fmu, "fmi2SetReal", FnSetReal);
+    for (name, value) in [
+        ("x.servo.screwLead", 1e200),
+        ("x.servo.tableMass", 5e-324),
+        ("y.servo.currentTimeConstant", 5e-324),
+        ("z.servo.axialStiffness", 1e308),
+        ("x.servo.axialDamping", 1e308),
+        ("x.servo.velocityGain", 1e308),
+        ("x.servo.encoderCounts", 5e-324),
+        ("x.servo.servoRate", 1e12),
+        ("machine.interpolationPeriod", 1e-12),
+        ("machine.interpolationPeriod", 1.7976931348623157e308),
+        ("x.maxAcceleration", 1e-308),
+    ] {
+        let start = std::time::Instant::now();
+        let c = fmu.instantiate("extreme");
+        let vr = fmu.vr(name);
+        let status = match unsafe { set(c, &vr, 1, &value) } {
+            OK => fmu.init(c, None),
+            refused => refused,
+        };
+        assert_eq!(status, ERROR, "{name} = {value}");
+        assert!(
+            fmu.last_log().contains("out of range"),
+            "{name}: {}",
+            fmu.last_log()
+        );
+        assert!(start.elapsed().as_secs_f64() < 2.0, "{name}");
+        fmu.free(c);
+    }
+    let c = fmu.instantiate("load");
+    assert_eq!(fmu.init(c, None), OK);
+    let vr = fmu.vr("x.loadForce");
+    assert_eq!(unsafe { set(c, &vr, 1, &1e308) }, ERROR);
+    assert!(
+        fmu.last_log().contains("loadForce = 1e308 N out of range"),
+        "{}",
+        fmu.last_log()
+    );
+    fmu.free(c);
 }

@@ -284,9 +284,21 @@ fn machine_file_servo_keys() {
     let p = ServoParams::from_table(&t).unwrap();
     assert_eq!((p.kv, p.screw_lead, p.table_mass), (30.0, 0.01, 120.5));
     let bad: toml::Table = toml::from_str("kv = 30").unwrap();
-    assert!(ServoParams::from_table(&bad)
-        .unwrap_err()
-        .starts_with("unknown servo key `kv`"));
+    let (key, message) = ServoParams::from_table(&bad).unwrap_err();
+    assert!(key == "kv" && message.starts_with("unknown servo key `kv`"));
+    // Ranges are checked with the whole machine (config::ranges), located at the value.
     let neg: toml::Table = toml::from_str("table_mass_kg = -1").unwrap();
-    assert!(ServoParams::from_table(&neg).is_err());
+    assert!(ServoParams::from_table(&neg).unwrap().check().is_err());
+    let e = cnc_motion::config::Machine::from_toml(
+        "[servo.x]
+table_mass_kg = -1
+",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("m.toml:2:17: servo.x.table_mass_kg = -1 out of range"),
+        "{e}"
+    );
 }

@@ -1,12 +1,16 @@
 //! G-code reader (RS274NGC subset): program text → a stream of `Block`s, one per line that moves
 //! the machine, dwells or stops. Modal state (units, distance mode, plane, feed, G61/G64) is carried
-//! here; positions come out absolute, in metres. Streaming: the reader holds the text and a cursor,
-//! never a tree of the whole program.
+//! here; positions come out absolute, in metres. Streaming: the reader holds a byte offset into the
+//! text or file (read line by line), never the whole program. Every number is range-checked
+//! (`check`).
 
+pub mod check;
 mod reader;
+pub mod source;
 pub mod words;
 
-pub use reader::{validate, Reader};
+pub use reader::{Reader, DEFAULT_ARC_TOLERANCE_M};
+pub use source::ProgramSource;
 
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -75,4 +79,18 @@ pub struct Block {
     /// Programmed feed (m/s) in force (G1/G2/G3); 0 if none was ever given.
     pub feed: f64,
     pub path_mode: PathMode,
+}
+
+/// Read the whole program once, keeping nothing, to report the first error before motion starts.
+pub fn validate(source: impl Into<ProgramSource>, file: &str) -> Result<u64, crate::error::ProgramError> {
+    validate_with(Reader::new(source, file, [0.0; 3]))
+}
+
+/// `validate` with a configured reader (e.g. the machine's arc tolerance).
+pub fn validate_with(mut reader: Reader) -> Result<u64, crate::error::ProgramError> {
+    let mut blocks = 0;
+    while reader.next_block()?.is_some() {
+        blocks += 1;
+    }
+    Ok(blocks)
 }

@@ -1,16 +1,23 @@
 //! The streaming reader: a cursor into the program text and the modal state, one line at a time.
 
+use super::check;
+use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
 use super::words::{split, Word};
 use super::{Block, Motion, PathMode, Plane, StopKind};
 use crate::error::ProgramError;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
-use std::sync::Arc;
 
-/// Arc end points may disagree with the centre by this much (LinuxCNC's tolerances: 0.002 mm
-/// absolute and 0.1 % of the radius; an arc is refused only when it exceeds both).
-const ARC_TOLERANCE_ABS: f64 = 0.002e-3;
+/// Arc end points may disagree with the centre by the machine's `arc_radius_tolerance_mm`
+/// (default 0.028 mm, LinuxCNC's CENTER_ARC_RADIUS_TOLERANCE; in G20 programs 2.54 times that,
+/// 0.0028 in, LinuxCNC's inch value) or by this share of the radius; an arc is refused only when
+/// it exceeds both.
+pub const DEFAULT_ARC_TOLERANCE_M: f64 = 0.028e-3;
 const ARC_TOLERANCE_REL: f64 = 1e-3;
+
+fn default_arc_tolerance() -> f64 {
+    DEFAULT_ARC_TOLERANCE_M
+}
 
 /// Axis indices (a, b, normal) of a plane, right-handed so that G3 is a positive rotation about
 /// the normal: G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
@@ -22,11 +29,15 @@ pub fn plane_axes(plane: Plane) -> (usize, usize, usize) {
     }
 }
 
-/// Streaming reader. Clone is cheap (the text is shared), so the reader state can be saved.
+/// Streaming reader. Clone is cheap (the text is shared, a file is reopened at the offset), so
+/// the reader state can be saved.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Reader {
     #[serde(skip)]
-    text: Arc<str>,
+    lines: Lines,
+    /// Absolute arc radius tolerance (m, for G21; × 2.54 in G20).
+    #[serde(default = "default_arc_tolerance")]
+    arc_tolerance: f64,
     file: String,
     /// Byte offset of the next line to read.
     offset: usize,
@@ -51,6 +62,8 @@ pub struct Reader {
     pending: Option<Block>,
     #[serde(skip)]
     words: Vec<Word>,
+    #[serde(skip)]
+    line_buf: Vec<u8>,
 }
 
 /// What the G and M words of a line ask for.
@@ -63,9 +76,10 @@ struct LineCodes {
 
 impl Reader {
     /// `file` is the name used in error messages; the machine starts at `start` (m).
-    pub fn new(text: Arc<str>, file: &str, start: Vec3) -> Reader {
+    pub fn new(source: impl Into<ProgramSource>, file: &str, start: Vec3) -> Reader {
         Reader {
-            text,
+            lines: Lines::new(source.into()),
+            arc_tolerance: DEFAULT_ARC_TOLERANCE_M,
             file: file.to_string(),
             offset: 0,
             line: 1,
@@ -83,12 +97,24 @@ impl Reader {
             done: false,
             pending: None,
             words: Vec::new(),
+            line_buf: Vec::new(),
         }
     }
 
-    /// Give back the program text after a state restore (the text is not serialized).
-    pub fn attach_text(&mut self, text: Arc<str>) {
-        self.text = text;
+    /// The absolute arc radius tolerance (m) for G21 programs (machine `arc_radius_tolerance_mm`).
+    pub fn with_arc_tolerance(mut self, tolerance: f64) -> Reader {
+        self.arc_tolerance = tolerance;
+        self
+    }
+
+    /// Give back the program after a state restore (the source is not serialized).
+    pub fn attach_text(&mut self, source: impl Into<ProgramSource>) {
+        self.lines = Lines::new(source.into());
+    }
+
+    /// Byte offset of the next line to read: progress through the program.
+    pub fn offset(&self) -> usize {
+        self.offset
     }
 
     /// Number of the next line to read (1-based): progress through the program.
@@ -105,18 +131,16 @@ impl Reader {
         if let Some(b) = self.pending.take() {
             return Ok(Some(b));
         }
-        while !self.done && self.offset < self.text.len() {
-            let text = self.text.clone();
-            let rest = &text[self.offset..];
-            let end = rest.find('\n').map_or(rest.len(), |i| i + 1);
-            let raw = &rest[..end];
-            let line = self.line;
-            let mut words = std::mem::take(&mut self.words);
-            let parsed = split(raw, &mut words).map_err(|e| self.error(line, e.col, e.message));
-            let result = parsed.and_then(|()| self.execute(line, &words));
-            self.words = words;
+        while !self.done {
+            let mut buf = std::mem::take(&mut self.line_buf);
+            let result = self.read_and_execute(&mut buf);
+            let end = buf.len();
+            self.line_buf = buf;
             // Advance only past a line that was read without error, so a retry reports it again.
-            let block = result?;
+            let block = result.inspect_err(|_| self.lines.reset())?;
+            if end == 0 {
+                break;
+            }
             self.offset += end;
             self.line += 1;
             if let Some(b) = block {
@@ -129,6 +153,35 @@ impl Reader {
         Ok(None)
     }
 
+    /// Read the next line into `buf` (left empty at the end) and execute it.
+    fn read_and_execute(&mut self, buf: &mut Vec<u8>) -> Result<Option<Block>, ProgramError> {
+        let line = self.line;
+        self.lines.read_line(self.offset, buf).map_err(|e| match e {
+            LineError::Io(e) => self.error(line, 1, format!("cannot read the program: {e}")),
+            LineError::TooLong => self.error(
+                line,
+                1,
+                format!("line out of range (longer than {MAX_LINE_BYTES} bytes)"),
+            ),
+        })?;
+        if buf.is_empty() {
+            return Ok(None);
+        }
+        let mut raw = std::str::from_utf8(buf).map_err(|e| {
+            let msg = "invalid UTF-8 (a program is ASCII or UTF-8 text)";
+            self.error(line, e.valid_up_to() as u32 + 1, msg)
+        })?;
+        if line == 1 {
+            // A UTF-8 byte-order mark; columns count from after it, as editors show them.
+            raw = raw.strip_prefix('\u{feff}').unwrap_or(raw);
+        }
+        let mut words = std::mem::take(&mut self.words);
+        let parsed = split(raw, &mut words).map_err(|e| self.error(line, e.col, e.message));
+        let result = parsed.and_then(|()| self.execute(line, &words));
+        self.words = words;
+        result
+    }
+
     /// Apply one line's words to the modal state; the block it makes, if any.
     fn execute(&mut self, line: u32, words: &[Word]) -> Result<Option<Block>, ProgramError> {
         let codes = self.modal_words(line, words)?;
@@ -137,23 +190,27 @@ impl Reader {
         let (mut r, mut p) = (None, None);
         for w in words {
             let v = w.value;
+            let located = |m: String| self.error(line, w.col, m);
             match w.letter {
                 b'X' | b'Y' | b'Z' => {
                     let i = (w.letter - b'X') as usize;
                     if axes[i].is_some() {
                         return Err(self.error(line, w.col, format!("{} given twice", w.letter as char)));
                     }
+                    check::length(w.letter, v, self.unit).map_err(located)?;
                     axes[i] = Some((v, w.col));
                 }
-                b'I' | b'J' | b'K' => ijk[(w.letter - b'I') as usize] = Some((v, w.col)),
-                b'R' => r = Some((v, w.col)),
+                b'I' | b'J' | b'K' | b'R' => {
+                    check::length(w.letter, v, self.unit).map_err(located)?;
+                    match w.letter {
+                        b'R' => r = Some((v, w.col)),
+                        l => ijk[(l - b'I') as usize] = Some((v, w.col)),
+                    }
+                }
                 b'P' => p = Some((v, w.col)),
                 b'F' => {
-                    if v <= 0.0 {
-                        return Err(self.error(line, w.col, format!("feed F{v} must be positive")));
-                    }
                     // G94: units per minute.
-                    self.feed = v * self.unit / 60.0;
+                    self.feed = check::feed(v, self.unit).map_err(located)?;
                 }
                 b'G' | b'M' | b'N' | b'S' | b'T' | b'H' | b'D' | b'Q' => {}
                 b'A' | b'B' | b'C' | b'U' | b'V' | b'W' => {
@@ -173,9 +230,7 @@ impl Reader {
             let Some((seconds, pcol)) = p else {
                 return Err(self.error(line, col, "G4 needs P (dwell time in seconds)"));
             };
-            if seconds < 0.0 {
-                return Err(self.error(line, pcol, "G4 P must not be negative"));
-            }
+            let seconds = check::dwell(seconds).map_err(|m| self.error(line, pcol, m))?;
             if axes.iter().any(Option::is_some) {
                 return Err(self.error(line, col, "G4 cannot move axes on the same line"));
             }
@@ -197,16 +252,7 @@ impl Reader {
         let mut block = None;
         if let Some((m, col)) = motion {
             self.motion = Some(m);
-            let mut to = self.position;
-            for (i, a) in axes.iter().enumerate() {
-                if let Some((v, _)) = a {
-                    to[i] = if self.absolute {
-                        v * self.unit
-                    } else {
-                        self.position[i] + v * self.unit
-                    };
-                }
-            }
+            let to = self.target(line, &axes)?;
             if m != 0 && self.feed <= 0.0 && (any_axis || m >= 2) {
                 return Err(self.error(line, col, format!("G{m} with no feed rate: F was never set")));
             }
@@ -232,6 +278,30 @@ impl Reader {
                 self.block(line, Motion::Stop(kind))
             }),
         })
+    }
+
+    /// End point of a motion from the axis words (G90/G91), each within the coordinate range.
+    fn target(&self, line: u32, axes: &[Option<(f64, u32)>; 3]) -> Result<Vec3, ProgramError> {
+        let mut to = self.position;
+        for (i, a) in axes.iter().enumerate() {
+            if let Some((v, c)) = a {
+                to[i] = if self.absolute {
+                    v * self.unit
+                } else {
+                    self.position[i] + v * self.unit
+                };
+                if to[i].abs() > check::MAX_COORDINATE_M {
+                    let msg = format!(
+                        "{} moves the axis to {} mm: out of range (|position| ≤ {} mm)",
+                        [b'X', b'Y', b'Z'][i] as char,
+                        to[i] * 1e3,
+                        check::MAX_COORDINATE_M * 1e3
+                    );
+                    return Err(self.error(line, *c, msg));
+                }
+            }
+        }
+        Ok(to)
     }
 
     /// A line with a motion and M0/M1/M2/M30: the motion first, the stop after it.
@@ -285,10 +355,7 @@ impl Reader {
         }
         let turns = match p {
             None => 0,
-            Some((v, _)) if v >= 1.0 && v.fract() == 0.0 && v < 1e6 => v as u32 - 1,
-            Some((v, pc)) => {
-                return Err(self.error(line, pc, format!("{name} P{v}: turns must be a whole number ≥ 1")));
-            }
+            Some((v, pc)) => check::turns(name, v).map_err(|m| self.error(line, pc, m))?,
         };
         let chord_a = to[a] - from[a];
         let chord_b = to[b] - from[b];
@@ -313,12 +380,16 @@ impl Reader {
                 ));
             }
             let miss = (r1 - r2).abs();
-            if miss > ARC_TOLERANCE_ABS && miss > ARC_TOLERANCE_REL * r1 {
+            let tolerance_abs = self.arc_tolerance_abs();
+            if miss > tolerance_abs && miss > ARC_TOLERANCE_REL * r1 {
                 let msg = format!(
-                    "{name}: end point is {:.4} mm off the circle (radius {:.4} mm at the start, {:.4} mm at the end)",
+                    "{name}: end point is {:.4} mm off the circle (radius {:.4} mm at the start, {:.4} mm at the end; \
+                     tolerance {:.4} mm or {} % of the radius, machine key arc_radius_tolerance_mm)",
                     miss * 1e3,
                     r1 * 1e3,
-                    r2 * 1e3
+                    r2 * 1e3,
+                    tolerance_abs * 1e3,
+                    ARC_TOLERANCE_REL * 100.0
                 );
                 return Err(self.error(line, col, msg));
             }
@@ -340,7 +411,7 @@ impl Reader {
                 return Err(self.error(line, rc, format!("{name}: R must not be zero")));
             }
             let half = 0.5 * chord;
-            if half > radius * (1.0 + 1e-12) + ARC_TOLERANCE_ABS {
+            if half > radius * (1.0 + 1e-12) + self.arc_tolerance_abs() {
                 let msg = format!(
                     "{name}: R{} is smaller than half the chord ({:.4} mm)",
                     rv,
@@ -394,10 +465,10 @@ impl Reader {
         let (mut tolerance, mut q) = (None, None);
         for w in words {
             if w.letter == b'P' {
-                tolerance = Some(w.value);
+                tolerance = Some(*w);
             }
             if w.letter == b'Q' {
-                q = Some(w.value);
+                q = Some(*w);
             }
         }
         for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
@@ -467,15 +538,16 @@ impl Reader {
                 }
                 640 => {
                     group(5, col, self)?;
-                    let tol = tolerance.map(|v| v * self.unit);
-                    if let Some(t) = tol {
-                        if t < 0.0 {
-                            return Err(self.error(line, col, "G64 P must not be negative"));
-                        }
-                    }
+                    let metres = |w: Option<Word>| {
+                        w.map(|w| {
+                            check::blend_tolerance(w.letter, w.value, self.unit)
+                                .map_err(|m| self.error(line, w.col, m))
+                        })
+                        .transpose()
+                    };
                     self.path_mode = PathMode::Blend {
-                        tolerance: tol,
-                        q: q.map(|v| v * self.unit),
+                        tolerance: metres(tolerance)?,
+                        q: metres(q)?,
                     };
                 }
                 // Accepted, no effect on motion: cancel compensation / offsets / cycles, feed per
@@ -505,6 +577,16 @@ impl Reader {
         }
         Ok(codes)
     }
+
+    /// The absolute arc tolerance in force: the machine's for G21, 2.54 times it for G20
+    /// (0.028 mm → 0.0028 in, as LinuxCNC's two constants).
+    fn arc_tolerance_abs(&self) -> f64 {
+        if self.unit > 1e-3 {
+            self.arc_tolerance * 2.54
+        } else {
+            self.arc_tolerance
+        }
+    }
 }
 
 /// A code in tenths as written: 410 → "41", 901 → "90.1".
@@ -514,14 +596,4 @@ fn fmt_code(tenths: i64) -> String {
     } else {
         format!("{}.{}", tenths / 10, (tenths % 10).abs())
     }
-}
-
-/// Read the whole program once, keeping nothing, to report the first error before motion starts.
-pub fn validate(text: Arc<str>, file: &str) -> Result<u64, ProgramError> {
-    let mut reader = Reader::new(text, file, [0.0; 3]);
-    let mut blocks = 0;
-    while reader.next_block()?.is_some() {
-        blocks += 1;
-    }
-    Ok(blocks)
 }

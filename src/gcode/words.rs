@@ -133,9 +133,17 @@ fn number(b: &[u8], mut i: usize) -> Result<(f64, usize), String> {
     if digits == 0 {
         return Err("a number is missing".into());
     }
-    text.parse::<f64>()
-        .map(|v| (v, i))
-        .map_err(|e| format!("bad number '{text}': {e}"))
+    let value = text
+        .parse::<f64>()
+        .map_err(|e| format!("bad number '{text}': {e}"))?;
+    if !value.is_finite() {
+        let shown: String = text.chars().take(16).collect();
+        return Err(format!(
+            "number {shown}… ({} digits) out of range (not a finite number)",
+            digits
+        ));
+    }
+    Ok((value, i))
 }
 
 #[cfg(test)]

@@ -107,6 +107,13 @@ impl Interpolator {
                 .map_or(0.0, |c| c.planned.profile.at(c.tau).s)
     }
 
+    /// The block in progress and the path time left in it (s).
+    pub fn current(&self) -> Option<(&Planned, f64)> {
+        self.current
+            .as_ref()
+            .map(|c| (&c.planned, (c.duration - c.tau).max(0.0)))
+    }
+
     /// True when no block is in progress (the caller knows whether more will come).
     pub fn idle(&self) -> bool {
         self.current.is_none()

@@ -30,6 +30,9 @@ fn mat_mul(a: &Mat, b: &Mat) -> Mat {
     c
 }
 
+/// Most squarings `expm` does (‖M‖ up to 2^63).
+pub const MAX_SQUARINGS: i32 = 64;
+
 /// e^M by scaling and squaring with a degree-16 Taylor polynomial (‖M/2^s‖ ≤ 1/2, so the
 /// truncation error is below 1e-19 relative before squaring).
 pub fn expm(m: &Mat) -> Mat {
@@ -37,6 +40,12 @@ pub fn expm(m: &Mat) -> Mat {
         .iter()
         .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
         .fold(0.0, f64::max);
+    // The squaring count is bounded: a norm beyond 2^MAX_SQUARINGS (or NaN/∞, from parameters no
+    // range check let through) gives a NaN matrix, which the outputs' check reports, instead of
+    // billions of squarings.
+    if norm.is_nan() || norm > 0.5 * 2f64.powi(MAX_SQUARINGS) {
+        return [[f64::NAN; NA]; NA];
+    }
     let s = if norm > 0.5 {
         (norm / 0.5).log2().ceil() as i32
     } else {

@@ -269,21 +269,22 @@ pub const PARAMETERS: &[ServoParameter] = &[
 ];
 
 impl ServoParams {
-    /// Read `[servo.x]` keys over the defaults; unknown keys and bad values are errors.
-    pub fn from_table(table: &toml::Table) -> Result<ServoParams, String> {
+    /// Read `[servo.x]` keys over the defaults; an unknown key or a value that is not a number
+    /// is an error naming the key (the ranges are checked with the whole machine).
+    pub fn from_table(table: &toml::Table) -> Result<ServoParams, (String, String)> {
         let mut s = ServoParams::default();
         for (key, value) in table {
             let p = PARAMETERS.iter().find(|p| p.key == key).ok_or_else(|| {
                 let keys: Vec<&str> = PARAMETERS.iter().map(|p| p.key).collect();
-                format!("unknown servo key `{key}` (known: {})", keys.join(", "))
+                let msg = format!("unknown servo key `{key}` (known: {})", keys.join(", "));
+                (key.clone(), msg)
             })?;
             let v = value
                 .as_float()
                 .or_else(|| value.as_integer().map(|i| i as f64))
-                .ok_or_else(|| format!("servo key `{key}` must be a number"))?;
+                .ok_or_else(|| (key.clone(), format!("servo key `{key}` must be a number")))?;
             (p.set)(&mut s, v * p.factor);
         }
-        s.check()?;
         Ok(s)
     }
 
@@ -307,25 +308,8 @@ impl ServoParams {
         Ok(())
     }
 
-    /// Physical ranges: masses, inertias, gains and rates positive; ratios in 0…1.
+    /// Physical ranges: the table of `config::ranges` (one place for the CLI and the FMU).
     pub fn check(&self) -> Result<(), String> {
-        for p in PARAMETERS {
-            let v = (p.get)(self);
-            let ok = match p.fmi_name {
-                "axialDamping" | "viscousFriction" | "coulombFriction" | "encoderCounts" | "screwInertia" => {
-                    v.is_finite() && v >= 0.0
-                }
-                "velocityFeedforward" | "accelerationFeedforward" => (0.0..=1.0).contains(&v),
-                "linearScale" => v == 0.0 || v == 1.0,
-                _ => v.is_finite() && v > 0.0,
-            };
-            if !ok {
-                return Err(format!("servo parameter {} = {v} is out of range", p.key));
-            }
-        }
-        if self.peak_torque < self.rated_torque {
-            return Err("servo: peak_torque must not be below rated_torque".into());
-        }
-        Ok(())
+        crate::config::ranges::check_servo("", "", self).map_err(|e| e.message)
     }
 }

@@ -4,6 +4,7 @@
 //! model glue is the table below.
 
 pub mod modal;
+pub mod ranges;
 
 use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
 use fmi2::Variability::{Continuous as CONT, Fixed as FIX};
@@ -190,21 +191,26 @@ impl fmi2::Model for MachineStructureFmu {
                 mode.check()?;
                 m.modes[i][k] = mode;
             }
-            Slot::Coupling(i) if x >= 0.0 => m.coupling_mass[i] = x,
-            Slot::Coupling(_) => return Err("couplingMass must not be negative".into()),
-            Slot::Force(i) => m.drive_force[i] = x,
+            Slot::Coupling(i) => {
+                ranges::within("couplingMass", x, ranges::COUPLING_MASS_KG, "kg")?;
+                m.coupling_mass[i] = x;
+            }
+            Slot::Force(i) => {
+                ranges::check_drive_force(x)?;
+                m.drive_force[i] = x;
+            }
             _ => return Err("outputs cannot be set".into()),
         }
         Ok(())
     }
 
     fn exit_initialization(&mut self) -> Result<(), String> {
-        self.0.modes.iter().flatten().try_for_each(Mode::check)
+        ranges::check_structure(&self.0)
     }
 
     fn do_step(&mut self, h: f64) -> Result<(), String> {
         self.0.step(h);
-        Ok(())
+        ranges::check_outputs(&self.0)
     }
 
     /// bincode of the whole model (fixed-size plain data; the layer adds magic, version, GUID
@@ -214,7 +220,12 @@ impl fmi2::Model for MachineStructureFmu {
     }
 
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String> {
-        self.0 = bincode::deserialize(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
+        let state: MachineStructure =
+            bincode::deserialize(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
+        ranges::check_structure(&state)
+            .and_then(|()| ranges::check_outputs(&state))
+            .map_err(|e| format!("MachineStructure state: {e}"))?;
+        self.0 = state;
         Ok(())
     }
 }

@@ -19,13 +19,7 @@ impl Mode {
         self.mass * self.omega() * self.omega()
     }
     pub fn check(&self) -> Result<(), String> {
-        let ok = |v: f64| v.is_finite() && v > 0.0;
-        if !(ok(self.frequency) && ok(self.mass) && self.damping.is_finite() && self.damping >= 0.0) {
-            return Err(format!(
-                "mode {self:?}: frequency and mass must be > 0, damping ≥ 0"
-            ));
-        }
-        Ok(())
+        crate::ranges::check_mode(self).map_err(|e| format!("mode {self:?}: {e}"))
     }
 }
 

@@ -3,11 +3,13 @@
 use clap::Args;
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
+use cnc_motion::gcode::ProgramSource;
 use cnc_motion::interp::Differences;
+use cnc_motion::path::Segment;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::Arc;
 
 const MM: f64 = 1e-3;
 
@@ -58,7 +60,8 @@ pub fn run(args: &RunArgs) -> ExitCode {
 }
 
 fn run_inner(args: &RunArgs) -> Result<(), String> {
-    let text = std::fs::read_to_string(&args.program).map_err(|e| format!("{}: {e}", args.program))?;
+    // The program is streamed line by line (memory does not grow with its length).
+    std::fs::File::open(&args.program).map_err(|e| format!("{}: {e}", args.program))?;
     let machine = match &args.machine {
         Some(path) => {
             let toml = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
@@ -66,8 +69,8 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         }
         None => Machine::default(),
     };
-    let lines = text.lines().count().max(1) as u64;
-    let mut engine = Engine::new(Arc::from(text), &args.program, &machine)
+    let source = ProgramSource::File(PathBuf::from(&args.program));
+    let mut engine = Engine::new(source, &args.program, &machine)
         .map_err(|e| e.to_string())?
         .with_servo(args.servo);
 
@@ -87,9 +90,9 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     };
 
     let bar = if std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(lines);
+        let bar = ProgressBar::new_spinner();
         bar.set_style(
-            ProgressStyle::with_template("{bar:40} line {pos}/{len} {msg}")
+            ProgressStyle::with_template("{spinner} line {pos} {msg}")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
         Some(bar)
@@ -111,6 +114,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         let tick = *engine.step().map_err(|e| e.to_string())?;
         // The larger of the feed law's values and what the ticks show (steps at corners).
         let (dv, da, dj) = emitted.push(tick.p);
+        cnc_motion::config::ranges::check_outputs(&engine).map_err(|m| format!("{}: {m}", args.program))?;
         v.take(tick.v);
         a.take(tick.a);
         j.take(tick.j);
@@ -168,10 +172,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         w.flush().map_err(|e| format!("{path}: {e}"))?;
     }
     if !engine.finished() {
-        return Err(format!(
-            "{}: not finished after --max-time {} s of simulated time",
-            args.program, args.max_time
-        ));
+        return Err(not_finished(&engine, &args.program, args.max_time));
     }
     let tick = engine.tick();
     let mut summary = serde_json::json!({
@@ -206,4 +207,30 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// `FILE:LINE:1: not finished after --max-time …: why` for the line being executed.
+fn not_finished(engine: &Engine, program: &str, max_time: f64) -> String {
+    let line = engine.tick().line;
+    let why = match engine.executing() {
+        Some((block, left)) => match block.segment {
+            Segment::Dwell { seconds, .. } => {
+                format!("dwelling (G4 P{seconds}), {left:.3} s of the dwell left")
+            }
+            _ if block.v_feed * 60.0 / MM < 1.0 => format!(
+                "feed too low: F{} mm/min, {left:.3} s of this block left",
+                block.v_feed * 60.0 / MM
+            ),
+            _ => format!(
+                "moving at {:.3} mm/min (programmed F{} mm/min), {left:.3} s of this block left",
+                engine.tick().feed * 60.0 / MM,
+                block.v_feed * 60.0 / MM
+            ),
+        },
+        None => "no block in progress: the path planner has not delivered the next segment".into(),
+    };
+    format!(
+        "{program}:{line}:1: not finished after --max-time {max_time} s of simulated time: \
+         executing line {line}, {why}"
+    )
 }

@@ -2,6 +2,8 @@
 //! describes (SI). Every key is optional; the defaults are a small 3-axis mill after seed 000,
 //! Table 1 (1.2 mm screw lead, 5000 rpm → 6000 mm/min).
 
+pub mod ranges;
+
 use crate::feed::ProfileKind;
 use crate::servo::ServoParams;
 use serde::{Deserialize, Serialize};
@@ -77,6 +79,10 @@ pub struct Machine {
     pub path_tolerance: f64,
     /// Chord error allowed on arcs (m).
     pub chord_tolerance: f64,
+    /// Arc end points may miss the circle by this much (m, G21; × 2.54 in G20 programs) or by
+    /// 0.1 % of the radius.
+    #[serde(default = "default_arc_tolerance")]
+    pub arc_radius_tolerance: f64,
     /// Largest feed, also the rapid (G0) feed (m/s).
     pub max_feed: f64,
     /// Optional path-level acceleration and jerk limits, on top of the axes' (m/s², m/s³).
@@ -100,6 +106,7 @@ impl Default for Machine {
             corner: CornerMode::Smooth,
             path_tolerance: 0.01e-3,
             chord_tolerance: 0.001e-3,
+            arc_radius_tolerance: crate::gcode::DEFAULT_ARC_TOLERANCE_M,
             max_feed: 6000.0 / 60.0 * 1e-3,
             max_path_acceleration: None,
             max_path_jerk: None,
@@ -113,6 +120,10 @@ impl Default for Machine {
             ],
         }
     }
+}
+
+fn default_arc_tolerance() -> f64 {
+    crate::gcode::DEFAULT_ARC_TOLERANCE_M
 }
 
 /// `[axis.x]` in the machine file.
@@ -150,6 +161,7 @@ pub struct MachineFile {
     pub corner: Option<CornerMode>,
     pub path_tolerance_mm: Option<f64>,
     pub chord_tolerance_mm: Option<f64>,
+    pub arc_radius_tolerance_mm: Option<f64>,
     pub max_feed_mm_min: Option<f64>,
     pub max_path_acceleration_mm_s2: Option<f64>,
     pub max_path_jerk_mm_s3: Option<f64>,
@@ -169,13 +181,24 @@ impl Machine {
             let (line, col) = e.span().map(|span| line_col(text, span.start)).unwrap_or((1, 1));
             crate::error::ProgramError::new(file, line, col, e.message().to_string())
         })?;
-        let m =
-            Machine::from_file(&parsed).map_err(|msg| crate::error::ProgramError::new(file, 1, 1, msg))?;
+        let located = |e: ranges::RangeError| {
+            let (line, col) = locate(text, &e.key);
+            crate::error::ProgramError::new(file, line, col, e.message)
+        };
+        let m = Machine::apply(&parsed).map_err(located)?;
+        ranges::check_machine(&m).map_err(located)?;
         Ok(m)
     }
 
     /// Apply a parsed machine file over the defaults and check the values.
     pub fn from_file(f: &MachineFile) -> Result<Machine, String> {
+        let m = Machine::apply(f).map_err(|e| e.message)?;
+        m.check()?;
+        Ok(m)
+    }
+
+    /// A parsed machine file over the defaults, not yet range-checked.
+    fn apply(f: &MachineFile) -> Result<Machine, ranges::RangeError> {
         let mut m = Machine::default();
         if let Some(v) = f.interpolation_period_s {
             m.interpolation_period = v;
@@ -194,6 +217,9 @@ impl Machine {
         }
         if let Some(v) = f.chord_tolerance_mm {
             m.chord_tolerance = v * MM;
+        }
+        if let Some(v) = f.arc_radius_tolerance_mm {
+            m.arc_radius_tolerance = v * MM;
         }
         if let Some(v) = f.max_feed_mm_min {
             m.max_feed = v * MM_MIN;
@@ -222,50 +248,42 @@ impl Machine {
         if let Some(servo) = &f.servo {
             for (i, s) in [&servo.x, &servo.y, &servo.z].into_iter().enumerate() {
                 if let Some(table) = s {
-                    m.servo[i] = ServoParams::from_table(table)?;
+                    m.servo[i] =
+                        ServoParams::from_table(table).map_err(|(key, message)| ranges::RangeError {
+                            key: format!("servo.{}.{key}", ["x", "y", "z"][i]),
+                            message,
+                        })?;
                 }
             }
         }
-        m.check()?;
         Ok(m)
     }
 
-    /// Every value must be finite and positive where a limit is meant.
+    /// Every value within its documented range (`ranges`); the message names the key.
     pub fn check(&self) -> Result<(), String> {
-        let positive = |name: &str, v: f64| -> Result<(), String> {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(format!("{name} must be a positive number, got {v}"))
-            }
-        };
-        positive("interpolation_period_s", self.interpolation_period)?;
-        if self.lookahead_blocks < 2 {
-            return Err(format!(
-                "lookahead_blocks must be at least 2, got {}",
-                self.lookahead_blocks
-            ));
-        }
-        positive("path_tolerance_mm", self.path_tolerance)?;
-        positive("chord_tolerance_mm", self.chord_tolerance)?;
-        positive("max_feed_mm_min", self.max_feed)?;
-        positive("max_snap_mm_s4", self.max_snap)?;
-        if let Some(v) = self.max_path_acceleration {
-            positive("max_path_acceleration_mm_s2", v)?;
-        }
-        if let Some(v) = self.max_path_jerk {
-            positive("max_path_jerk_mm_s3", v)?;
-        }
-        if let Some(v) = self.max_transition_jerk {
-            positive("max_transition_jerk_mm_s3", v)?;
-        }
-        for (axis, a) in ["x", "y", "z"].iter().zip(&self.axes) {
-            positive(&format!("axis.{axis}.max_velocity_mm_min"), a.max_velocity)?;
-            positive(&format!("axis.{axis}.max_acceleration_mm_s2"), a.max_acceleration)?;
-            positive(&format!("axis.{axis}.max_jerk_mm_s3"), a.max_jerk)?;
-        }
-        Ok(())
+        ranges::check_machine(self).map_err(|e| e.message)
     }
+}
+
+/// Line and column of the value of a dotted key (`axis.x.max_jerk_mm_s3`) in the file; of its
+/// nearest enclosing table when the key is not written there (a default in a relation); 1:1
+/// when nothing is.
+fn locate(text: &str, key: &str) -> (u32, u32) {
+    let Ok(doc) = toml_edit::ImDocument::parse(text) else {
+        return (1, 1);
+    };
+    let mut item = doc.as_item();
+    let mut span = None;
+    for part in key.split('.') {
+        match item.get(part) {
+            Some(next) => {
+                item = next;
+                span = item.span().or(span);
+            }
+            None => break,
+        }
+    }
+    span.map_or((1, 1), |s| line_col(text, s.start))
 }
 
 /// 1-based line and column of a byte offset.

@@ -1,0 +1,108 @@
+//! The documented range of every number a program may give (README "Program ranges"). Values
+//! are checked where they are read, in the program's units, so the message names what was
+//! written; anything outside is `FILE:LINE:COL: … out of range (…)`.
+
+/// Largest |coordinate| of an axis position, a centre offset (I/J/K), a radius (R) or a G64
+/// tolerance: 100 m, far beyond any machine table, far below where metres lose sub-µm precision.
+pub const MAX_COORDINATE_M: f64 = 100.0;
+/// Largest programmed feed: 1 000 000 mm/min (16.7 m/s).
+pub const MAX_FEED_MM_MIN: f64 = 1e6;
+pub const MAX_FEED_M_S: f64 = MAX_FEED_MM_MIN * 1e-3 / 60.0;
+/// Longest dwell G4 P: one day (s).
+pub const MAX_DWELL_S: f64 = 86_400.0;
+/// Most turns of a G2/G3 P word (P1 is the plain arc).
+pub const MAX_TURNS: f64 = 10_000.0;
+
+/// `value` in program units (metres per unit `unit`) as a length within ±MAX_COORDINATE_M.
+pub fn length(letter: u8, value: f64, unit: f64) -> Result<f64, String> {
+    let m = value * unit;
+    if m.is_finite() && m.abs() <= MAX_COORDINATE_M {
+        Ok(m)
+    } else {
+        let bound = MAX_COORDINATE_M / unit;
+        Err(format!(
+            "{}{value} out of range (|{}| ≤ {bound} {})",
+            letter as char,
+            letter as char,
+            unit_name(unit)
+        ))
+    }
+}
+
+/// A feed F (program units per minute) in m/s: 0 < F ≤ MAX_FEED_M_S.
+pub fn feed(value: f64, unit: f64) -> Result<f64, String> {
+    let v = value * unit / 60.0;
+    if v > 0.0 && v <= MAX_FEED_M_S {
+        Ok(v)
+    } else if value <= 0.0 {
+        Err(format!("feed F{value} must be positive"))
+    } else {
+        let bound = MAX_FEED_MM_MIN * (1e-3 / unit);
+        Err(format!(
+            "feed F{value} out of range (0 < F ≤ {bound} {}/min)",
+            unit_name(unit)
+        ))
+    }
+}
+
+/// A dwell G4 P (s): 0 ≤ P ≤ MAX_DWELL_S.
+pub fn dwell(value: f64) -> Result<f64, String> {
+    if value < 0.0 {
+        Err("G4 P must not be negative".into())
+    } else if value <= MAX_DWELL_S {
+        Ok(value)
+    } else {
+        Err(format!("G4 P{value} out of range (0 ≤ P ≤ {MAX_DWELL_S} s)"))
+    }
+}
+
+/// G2/G3 P: a whole number of turns 1 ≤ P ≤ MAX_TURNS; the extra full turns (P − 1).
+pub fn turns(name: &str, value: f64) -> Result<u32, String> {
+    if (1.0..=MAX_TURNS).contains(&value) && value.fract() == 0.0 {
+        Ok(value as u32 - 1)
+    } else {
+        Err(format!(
+            "{name} P{value} out of range (turns: a whole number from 1 to {MAX_TURNS})"
+        ))
+    }
+}
+
+/// G64 P or Q (program units) in metres: 0 ≤ value ≤ MAX_COORDINATE_M.
+pub fn blend_tolerance(letter: u8, value: f64, unit: f64) -> Result<f64, String> {
+    if value < 0.0 {
+        return Err(format!("G64 {} must not be negative", letter as char));
+    }
+    length(letter, value, unit)
+}
+
+fn unit_name(unit: f64) -> &'static str {
+    if unit > 1e-3 {
+        "in"
+    } else {
+        "mm"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_are_inclusive_and_named_in_program_units() {
+        assert_eq!(length(b'X', 1e5, 1e-3), Ok(100.0));
+        let e = length(b'X', 100_000.001, 1e-3).unwrap_err();
+        assert_eq!(e, "X100000.001 out of range (|X| ≤ 100000 mm)");
+        let e = length(b'Y', f64::INFINITY, 25.4e-3).unwrap_err();
+        assert!(e.contains("out of range") && e.contains(" in)"), "{e}");
+        assert!(feed(1e6, 1e-3).is_ok() && feed(1.000001e6, 1e-3).is_err());
+        assert!(feed(-1.0, 1e-3).unwrap_err().contains("positive"));
+        assert_eq!(turns("G2", 1.0), Ok(0));
+        assert_eq!(turns("G2", 10_000.0), Ok(9_999));
+        assert!(turns("G2", 10_001.0).unwrap_err().contains("1 to 10000"));
+        assert!(turns("G2", 1.5).is_err() && turns("G2", 0.0).is_err());
+        assert!(dwell(86_400.0).is_ok() && dwell(86_401.0).is_err() && dwell(-1.0).is_err());
+        assert!(blend_tolerance(b'Q', -0.1, 1e-3)
+            .unwrap_err()
+            .contains("negative"));
+    }
+}
