@@ -179,17 +179,19 @@ impl Arc {
         for c in 0..n {
             let phi = (2 * c + 1) as f64 * delta;
             let (sn, cs) = phi.sin_cos();
-            let mut b = [[0.0; 3]; 3];
-            for i in 0..3 {
+            // Per axis (|p'|, |p''|, |p'''|), then as rows of the cell.
+            let axis: [[f64; 3]; 3] = std::array::from_fn(|i| {
                 let amp = self.e1[i].hypot(self.e2[i]);
                 let e_t = (-sn * self.e1[i] + cs * self.e2[i]).abs();
                 let e_r = (cs * self.e1[i] + sn * self.e2[i]).abs();
                 let grow = amp * delta;
-                b[0][i] = ((r * (e_t + grow).min(amp) + (h * self.axis[i]).abs()) / k).min(1.0);
-                b[1][i] = r * (e_r + grow).min(amp) / (k * k);
-                b[2][i] = r * (e_t + grow).min(amp) / (k * k * k);
-            }
-            take(b);
+                [
+                    ((r * (e_t + grow).min(amp) + (h * self.axis[i]).abs()) / k).min(1.0),
+                    r * (e_r + grow).min(amp) / (k * k),
+                    r * (e_t + grow).min(amp) / (k * k * k),
+                ]
+            });
+            take(std::array::from_fn(|n| [axis[0][n], axis[1][n], axis[2][n]]));
         }
     }
 }
