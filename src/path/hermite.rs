@@ -178,20 +178,23 @@ impl Hermite {
 
     /// Bézier control points (τ-form): the curve lies in their convex hull.
     pub fn control_points(&self) -> [Vec3; 6] {
-        let l = self.lambda;
-        let a = self.jet(0.0);
-        let b = self.jet(l);
-        let (m0, m1) = (scale(a.d1, l), scale(b.d1, l));
-        let (a0, a1) = (scale(a.d2, l * l), scale(b.d2, l * l));
-        [
-            a.p,
-            add(a.p, scale(m0, 0.2)),
-            add(add(a.p, scale(m0, 0.4)), scale(a0, 0.05)),
-            add(sub(b.p, scale(m1, 0.4)), scale(a1, 0.05)),
-            sub(b.p, scale(m1, 0.2)),
-            b.p,
-        ]
+        bezier(&self.jet(0.0), &self.jet(self.lambda), self.lambda)
     }
+}
+
+/// Bézier control points of the quintic Hermite from jet `a` to jet `b` over a parameter range
+/// of length `l` (the curve, or any part of it given its end jets, lies in their hull).
+pub fn bezier(a: &Jet, b: &Jet, l: f64) -> [Vec3; 6] {
+    let (m0, m1) = (scale(a.d1, l), scale(b.d1, l));
+    let (a0, a1) = (scale(a.d2, l * l), scale(b.d2, l * l));
+    [
+        a.p,
+        add(a.p, scale(m0, 0.2)),
+        add(add(a.p, scale(m0, 0.4)), scale(a0, 0.05)),
+        add(sub(b.p, scale(m1, 0.4)), scale(a1, 0.05)),
+        sub(b.p, scale(m1, 0.2)),
+        b.p,
+    ]
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@
 
 use super::chain::{Chain, Curve, Piece};
 use super::corner::REVERSAL_COS;
-use super::hermite::{Hermite, Jet};
+use super::hermite::{bezier, Hermite, Jet};
 use super::{
     add, cross, curve_limits, dot, line_limits, max_bounds, norm, scale, sub, unit, Arc, Line, PathBlock,
     Segment, Shares,
@@ -324,21 +324,27 @@ impl SmoothBuilder {
         );
         let mut u = 0.0;
         let mut inside = true;
-        for mv in moves {
+        let mut jet_u = h.jet(0.0);
+        'moves: for mv in moves {
             let l = line_of(mv);
             let ub = (u + l.length()).min(lambda);
             // The curve over the chord's range, in `CHECK_PIECES` parts: each part lies in the
             // hull of its control points, which come close to the curve as the parts shrink.
-            for k in 0..CHECK_PIECES {
-                let (u0, u1) = (
-                    u + (ub - u) * k as f64 / CHECK_PIECES as f64,
-                    u + (ub - u) * (k + 1) as f64 / CHECK_PIECES as f64,
-                );
-                let part = Hermite::new(h.jet(u0), h.jet(u1), u1 - u0);
-                inside &= part
-                    .control_points()
+            let step = (ub - u) / CHECK_PIECES as f64;
+            for k in 1..=CHECK_PIECES {
+                let u1 = if k == CHECK_PIECES {
+                    ub
+                } else {
+                    u + step * k as f64
+                };
+                let jet_next = h.jet(u1);
+                inside = bezier(&jet_u, &jet_next, step)
                     .iter()
                     .all(|&c| distance_to_segment(c, l.start, l.end) <= SPAN_SHARE * mv.tolerance);
+                jet_u = jet_next;
+                if !inside {
+                    break 'moves;
+                }
             }
             u = ub;
         }
