@@ -158,10 +158,20 @@ fn servo_type(fmi_name: &str) -> Type {
 /// The table expanded (value references 1…n in this order); the servo row stands for every
 /// drive parameter of its axis.
 pub fn rows() -> Vec<(VariableInfo, Slot)> {
-    fmi2::table::expand(ROWS, &["x", "y", "z"], |row, i, axis| match row.7 {
+    let mut rows = fmi2::table::expand(ROWS, &["x", "y", "z"], |row, i, axis| match row.7 {
         Slot::Servo(..) => servo_rows(i, axis).collect(),
         slot => vec![(variable(row, axis), slot.on_axis(i))],
-    })
+    });
+    // Parameters declare the documented ranges that `Machine::check` enforces (config/ranges.rs).
+    for (v, _) in &mut rows {
+        if matches!(v.kind, Type::Real | Type::Integer) {
+            if let Some((min, max)) = crate::config::ranges::declared(&v.name) {
+                v.min = Some(min);
+                v.max = Some(max);
+            }
+        }
+    }
+    rows
 }
 
 fn variable(row: &Row, axis: &str) -> VariableInfo {

@@ -111,6 +111,27 @@ pub const MACHINE: &[Range] = &[
     ),
 ];
 
+/// The declared range (SI) of an FMU parameter by its name (`machine.…`, `x.maxJerk`,
+/// `y.servo.kv`, …), for `min`/`max` in the modelDescription; None if it has no row here.
+/// Parameters where 0 means "none" or "off" are declared from 0.
+pub fn declared(fmi_name: &str) -> Option<(f64, f64)> {
+    let (table, name) = match fmi_name.split_once('.') {
+        Some(("machine", _)) => (MACHINE, fmi_name),
+        Some((_, rest)) => match rest.strip_prefix("servo.") {
+            Some(servo) => (SERVO, servo),
+            None => (AXIS, rest),
+        },
+        None => return None,
+    };
+    let r = table.iter().find(|r| r.fmi == name)?;
+    let zero_means_none = matches!(
+        r.key,
+        "max_path_acceleration_mm_s2" | "max_path_jerk_mm_s3" | "max_transition_jerk_mm_s3"
+    );
+    let min = if r.zero_ok || zero_means_none { 0.0 } else { r.min };
+    Some((min, r.max))
+}
+
 /// Per-axis keys `[axis.x]` (FMU `x.maxVelocity` …).
 pub const AXIS: &[Range] = &[
     r(
