@@ -289,7 +289,7 @@ fn bad_calls_return_errors_with_a_log_line() {
     let vr = fmu.vr("feedOverride");
     assert_eq!(unsafe { set(c, &vr, 1, &0.5) }, OK);
     assert_eq!(unsafe { set(c, &vr, 1, &3.0) }, ERROR);
-    refused_after_error("'feedOverride' = 3 is outside its range 0 … 2");
+    refused_after_error("'feedOverride' = 3 out of range (0 … 2)");
     // doStep off the slave's time, NaN time, a negative step.
     assert_eq!(unsafe { step(c, 0.5, 1e-3, 1) }, ERROR);
     refused_after_error("is not the slave's time");

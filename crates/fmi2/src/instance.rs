@@ -72,7 +72,7 @@ fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<String> {
     let below = min.is_some_and(|m| x < m);
     let above = max.is_some_and(|m| x > m);
     let bound = |b: Option<f64>| b.map_or("…".into(), |b| b.to_string());
-    (below || above).then(|| format!("{x} is outside its range {} … {}", bound(min), bound(max)))
+    (below || above).then(|| format!("{x} out of range ({} … {})", bound(min), bound(max)))
 }
 
 pub struct Instance<M: Model> {
