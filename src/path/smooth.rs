@@ -52,12 +52,12 @@ const SPAN_SHARE: f64 = 0.7;
 const CHECK_PIECES: usize = 4;
 /// Knot spacing of the fitted spans (m): long enough that rounding of the programmed points
 /// does not show as jerk, short enough to follow curvature.
-const KNOT_LENGTH: f64 = 1e-3;
+const KNOT_LENGTH: f64 = 2e-3;
 /// Moves held at most in one run before its spans are fitted.
 const RUN_MAX: usize = 1024;
 /// Pieces at most in one chain, and the speed ratio within which pieces share a chain.
 const CHAIN_MAX_PIECES: usize = 512;
-const CHAIN_SPEED_RATIO: f64 = 0.8;
+const CHAIN_SPEED_RATIO: f64 = 0.7;
 /// Shorter pieces are dropped (m).
 const MIN_PIECE: f64 = 1e-12;
 
@@ -566,7 +566,7 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
 }
 
 /// Tangential shares tried for a chain (see `chain_limits`).
-const TANGENTIAL_SHARES: [f64; 5] = [0.005, 0.02, 0.05, 0.1, 0.25];
+const TANGENTIAL_SHARES: [f64; 8] = [0.005, 0.01, 0.02, 0.05, 0.1, 0.15, 0.25, 0.4];
 
 /// Time of the 7-phase law from rest to rest over `length` within `limits`.
 fn rest_to_rest(length: f64, limits: &Limits) -> f64 {
