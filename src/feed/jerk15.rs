@@ -5,8 +5,8 @@
 //! the seed (t_v > t_a > t_j: J and A are reached; t_v ≤ t_a < t_j: neither is) and the critical
 //! distances s_cr1..s_cr4 fall out of choosing the peak acceleration below.
 
-use super::quintic::{largest_within, Composed, Shape};
-use super::{BlockRequest, FeedLaw, Kin, Limits};
+use super::compose::{self, Composed, RampCruiseRamp, RampLaw, Shape};
+use super::{BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
 /// One speed change with the 7 jerk phases (durations t_j, t_2, t_j, t_4, t_j, t_2, t_j).
@@ -156,11 +156,35 @@ pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
 }
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
-    largest_within(v_out.max(0.0), length.max(0.0), |v| ramp_distance(v, v_out, lim))
+    compose::max_speed(&Law(*lim), length, v_out)
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
-    largest_within(v_in.max(0.0), length.max(0.0), |v| ramp_distance(v_in, v, lim))
+    compose::max_speed(&Law(*lim), length, v_in)
+}
+
+/// The 15-phase ramp as a [`RampLaw`]. With the peak acceleration a: T = T_rise(A) + Δv/A when A is
+/// reached; T = 2(J/R + a/J) with a(J/R + a/J) = Δv when only J is; T = 4·(Δv/2R)^(1/3) otherwise.
+struct Law(Limits);
+
+impl RampLaw for Law {
+    fn time(&self, dv: f64) -> (f64, f64) {
+        let r = Ramp15::new(0.0, dv, &self.0);
+        let t = r.duration();
+        let (a, j, rs) = (self.0.a_max, self.0.j_max, snap(&self.0));
+        let slope = if r.t_4 > 0.0 || r.a_peak >= a {
+            1.0 / a
+        } else if r.t_2 > 0.0 || r.j_peak >= j {
+            2.0 / (j * j / rs + 2.0 * r.a_peak)
+        } else {
+            t / (3.0 * dv)
+        };
+        (t, slope)
+    }
+    fn valid(&self) -> bool {
+        let (a, j) = (self.0.a_max, self.0.j_max);
+        a.is_finite() && j.is_finite() && a > 0.0 && j > 0.0 && !self.0.snap_max.is_nan()
+    }
 }
 
 /// Phases 1–7 (`up`), 8 (`t_cruise` at `v_peak`), 9–15 (`down`).
@@ -176,7 +200,7 @@ pub struct Jerk15 {
 
 pub fn plan(req: &BlockRequest) -> Jerk15 {
     let lim = req.limits;
-    let shape = Shape::solve(req, |v1, v2| ramp_distance(v1, v2, &lim));
+    let shape = Shape::solve(&Law(lim), req);
     Jerk15 {
         v_in: shape.v_in,
         v_peak: shape.v_peak,
@@ -187,8 +211,8 @@ pub fn plan(req: &BlockRequest) -> Jerk15 {
     }
 }
 
-impl Jerk15 {
-    fn blocks(&self) -> Composed {
+impl RampCruiseRamp for Jerk15 {
+    fn composed(&self) -> Composed {
         Composed {
             v_in: self.v_in,
             v_peak: self.v_peak,
@@ -198,26 +222,13 @@ impl Jerk15 {
             t_down: self.down.duration(),
         }
     }
-}
-
-impl FeedLaw for Jerk15 {
-    fn duration(&self) -> f64 {
-        self.blocks().duration()
+    fn up_at(&self, tau: f64) -> Kin {
+        self.up.at(self.v_in, tau)
     }
-    fn length(&self) -> f64 {
-        self.blocks().length()
+    fn down_at(&self, tau: f64) -> Kin {
+        self.down.at(self.v_peak, tau)
     }
-    fn v_end(&self) -> f64 {
-        self.v_end
-    }
-    fn at(&self, t: f64) -> Kin {
-        self.blocks().at(
-            t,
-            |tau| self.up.at(self.v_in, tau),
-            |tau| self.down.at(self.v_peak, tau),
-        )
-    }
-    fn phases(&self) -> Vec<f64> {
+    fn phase_list(&self) -> Vec<f64> {
         let mut p = self.up.phases().to_vec();
         p.push(self.t_cruise);
         p.extend(self.down.phases());
@@ -228,6 +239,7 @@ impl FeedLaw for Jerk15 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feed::FeedLaw;
 
     const MM: f64 = 1e-3;
 

@@ -11,10 +11,13 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod compose;
 pub mod jerk15;
 pub mod mixed57;
 pub mod quintic;
+pub mod roots;
 pub mod scurve7;
+pub mod tolerance;
 pub mod trapezoid;
 
 /// Kinematic state along the path at one instant: s (m), v (m/s), a (m/s²), j (m/s³).

@@ -13,13 +13,13 @@
 //! increasing function Newton lands right of the root after one step and then decreases
 //! monotonically to it). Rest to rest this is the time-optimal profile.
 
+use super::roots::{bisect, cubic_pos, fit_down, quadratic_pos};
+use super::tolerance::{PEAK_RESIDUAL, PEAK_STEP};
 use super::{BlockRequest, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
 /// Newton steps for the peak speed (quadratic convergence from a Cardano start: 3–6 used).
 const NEWTON_STEPS: usize = 40;
-/// Bisection steps for the rare requests with V_F below an end speed, or an unreachable slow-down.
-const BISECTION_STEPS: usize = 64;
 
 /// Phase durations `tau`, the jerk of the two ramps and the distance and speed at each phase
 /// start, so that `at(t)` is one cubic (eq. 1–7). Kept to 26 numbers (the `Profile` enum holds it
@@ -95,7 +95,7 @@ fn valid_limits(lim: &Limits) -> bool {
 
 /// Largest speed change x ≥ 0 from base speed v (up or down to v) with d(v, v + x) ≤ length.
 /// d is increasing in x, so this is the one root of d(v, v + x) = length.
-fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
+pub(super) fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
     if !valid_limits(lim) || length.is_nan() || length <= 0.0 {
         return 0.0;
     }
@@ -103,7 +103,7 @@ fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
     let v = v.max(0.0);
     let ac = a * a / j;
     // Without plateau: (2v + x)·sqrt(x/J) = L, with s = sqrt(x): s³ + 2v·s − L·sqrt(J) = 0 (Cardano).
-    let s = cubic_root_pos(2.0 * v, length * j.sqrt());
+    let s = cubic_pos(2.0 * v, length * j.sqrt());
     let x = s * s;
     if x <= ac {
         return x;
@@ -111,41 +111,7 @@ fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
     // With plateau: (2v + x)(x/A + A/J) = 2L → x²/A + x(A/J + 2v/A) + 2vA/J − 2L = 0.
     let b = a / j + 2.0 * v / a;
     let c = 2.0 * v * a / j - 2.0 * length;
-    positive_quadratic_root(1.0 / a, b, c)
-}
-
-/// The real root of s³ + p·s − q = 0 with p ≥ 0, q ≥ 0 (one real root, ≥ 0), polished by
-/// two Newton steps against the cancellation in Cardano's formula when p³ ≫ q².
-fn cubic_root_pos(p: f64, q: f64) -> f64 {
-    if q <= 0.0 {
-        return 0.0;
-    }
-    let disc = (0.25 * q * q + p * p * p / 27.0).sqrt();
-    let w = (0.5 * q + disc).cbrt();
-    let mut s = if w > 0.0 { w - p / (3.0 * w) } else { 0.0 };
-    if s.is_nan() || s <= 0.0 || s * p > 2.0 * q {
-        // Cancellation: for p³ ≫ q² the root is ≈ q/p.
-        s = q / p.max(f64::MIN_POSITIVE);
-    }
-    for _ in 0..2 {
-        let f = s * s * s + p * s - q;
-        let df = 3.0 * s * s + p;
-        if df > 0.0 {
-            s -= f / df;
-        }
-    }
-    s.max(0.0)
-}
-
-/// Positive root of a·x² + b·x + c = 0 (a > 0, b ≥ 0, c ≤ 0), without cancellation.
-fn positive_quadratic_root(a: f64, b: f64, c: f64) -> f64 {
-    let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
-    let r = -2.0 * c / (b + disc);
-    if r.is_finite() {
-        r.max(0.0)
-    } else {
-        0.0
-    }
+    quadratic_pos(1.0 / a, b, c)
 }
 
 /// v + `max_rise` with the rounding of the closed form removed: step the speed down (by ulps of
@@ -210,13 +176,13 @@ fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) ->
     let u_plateau = ac.sqrt();
     if u_plateau < u_max && peak_distance(u_plateau, v_in, v_out, a, j).0 <= length {
         let c = -(v_in * v_in + v_out * v_out) / (2.0 * a) + (v_in + v_out) * a / (2.0 * j) - length;
-        let vc = positive_quadratic_root(1.0 / a, a / j, c);
+        let vc = quadratic_pos(1.0 / a, a / j, c);
         return vc.clamp(v_hi, v_cap);
     }
     // Start: Cardano for both ramps triangular from v_hi (exact when v_in = v_out, e.g. rest to
     // rest: 2(2v + u²)·u/sqrt(J) = L), shifted by the ramp v_lo → v_hi.
     let d0 = peak_distance(0.0, v_in, v_out, a, j).0;
-    let mut u = cubic_root_pos(2.0 * v_hi, 0.5 * (length - d0).max(0.0) * j.sqrt()).min(u_max);
+    let mut u = cubic_pos(2.0 * v_hi, 0.5 * (length - d0).max(0.0) * j.sqrt()).min(u_max);
     for _ in 0..NEWTON_STEPS {
         let (d, g) = peak_distance(u, v_in, v_out, a, j);
         if g.is_nan() || g <= 0.0 {
@@ -227,41 +193,11 @@ fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) ->
         u = next;
         // Quadratic convergence: a residual below 1e-8 leaves ~1e-16 after this step (the rest is
         // taken by fit_down or the cruise).
-        if step <= 1e-15 * u.max(1e-300) || (d - length).abs() <= 1e-8 * length {
+        if step <= PEAK_STEP * u.max(f64::MIN_POSITIVE) || (d - length).abs() <= PEAK_RESIDUAL * length {
             break;
         }
     }
     (v_hi + u * u).clamp(v_hi, v_cap)
-}
-
-/// Step `w` down towards `floor` (a few ulps at first, doubling) until f(w) ≤ target; f(floor) ≤
-/// target is known, so at most a bounded number of steps.
-fn fit_down(mut w: f64, floor: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let mut step = w * f64::EPSILON;
-    for _ in 0..64 {
-        if f(w) <= target || w <= floor {
-            break;
-        }
-        w = (w - step).max(floor);
-        step *= 2.0;
-    }
-    w.max(floor)
-}
-
-/// Largest x in [lo, hi] with f(x) ≤ target by bisection, given f(lo) ≤ target < f(hi) (bounded).
-fn bisect(mut lo: f64, mut hi: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
-    for _ in 0..BISECTION_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if f(mid) <= target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    lo
 }
 
 /// The block's profile: V_F if the length allows, the highest peak V_F' otherwise, and the
@@ -290,10 +226,10 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
         // below v_out if a stop fits, else the lowest one above v_out; cruise at v_in first.
         let d = |x: f64| ramp_distance(v_in, x, lim);
         let v_end = if d(0.0) <= length {
-            bisect(0.0, v_out, length, d)
+            bisect(0.0, v_out, |x| d(x) <= length)
         } else {
             // d(v_in) = 0 ≤ L < d(v_out): largest speed drop that fits, searched downwards from v_in.
-            let drop = bisect(0.0, v_in - v_out, length, |dv| d(v_in - dv));
+            let drop = bisect(0.0, v_in - v_out, |dv| d(v_in - dv) <= length);
             v_in - drop
         };
         return Scurve7::build(v_in, v_in, v_end, length, a, j);
@@ -318,7 +254,7 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
         if total(v_feed) <= length {
             v_feed
         } else {
-            let excess = bisect(0.0, v_hi - v_feed, length, |dv| total(v_hi - dv));
+            let excess = bisect(0.0, v_hi - v_feed, |dv| total(v_hi - dv) <= length);
             v_hi - excess
         }
     };
