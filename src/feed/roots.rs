@@ -58,11 +58,22 @@ pub fn cubic_depressed(p: f64, q: f64) -> [f64; 3] {
             m * (theta - 2.0 * third).cos(),
         ];
         r.sort_by(f64::total_cmp);
-        return r;
+        return r.map(|s| polish_cubic(p, q, s));
     }
     let w = (0.25 * q * q + p * p * p / 27.0).max(0.0).sqrt();
     let root = (-0.5 * q + w).cbrt() + (-0.5 * q - w).cbrt();
-    [root, f64::NAN, f64::NAN]
+    [polish_cubic(p, q, root), f64::NAN, f64::NAN]
+}
+
+/// Two Newton steps on s³ + p·s + q (the closed forms lose digits near a root of small magnitude).
+fn polish_cubic(p: f64, q: f64, mut s: f64) -> f64 {
+    for _ in 0..2 {
+        let df = 3.0 * s * s + p;
+        if df != 0.0 {
+            s -= (s * s * s + p * s + q) / df;
+        }
+    }
+    s
 }
 
 /// Root of an increasing f on [lo, hi] with f(lo) ≤ 0 < f(hi): Newton from x0, bisection whenever a

@@ -13,8 +13,8 @@
 //! increasing function Newton lands right of the root after one step and then decreases
 //! monotonically to it). Rest to rest this is the time-optimal profile.
 
-use super::roots::{bisect, cubic_pos, fit_down, quadratic_pos};
-use super::tolerance::{PEAK_RESIDUAL, PEAK_STEP};
+use super::roots::{bisect, cubic_depressed, cubic_pos, fit_down, quadratic_pos};
+use super::tolerance::{PEAK_RESIDUAL, PEAK_STEP, ROOT_SLACK};
 use super::{BlockRequest, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
@@ -200,6 +200,62 @@ fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) ->
     (v_hi + u * u).clamp(v_hi, v_cap)
 }
 
+/// Exit speed of a slow-down v_in → v_out that does not fit in `length` (cruise at v_in first).
+/// D(v_in, x) is unimodal in x (see plan/mod.rs): the largest exit below v_out if a stop fits, else
+/// the lowest one above v_out. In the speed drop y = v_in − x, D = L is one of the roots of
+/// [`drop_roots`] (exactly one lies in the interval searched); bisection only if rounding loses it.
+fn slow_down_exit(length: f64, v_in: f64, v_out: f64, lim: &Limits) -> f64 {
+    let d = |x: f64| ramp_distance(v_in, x, lim);
+    let g = |y: f64| d(v_in - y);
+    let roots = drop_roots(length, v_in, lim.a_max, lim.j_max);
+    let within = |lo: f64, hi: f64| roots.into_iter().filter(move |y| *y >= lo && *y <= hi);
+    if d(0.0) <= length {
+        // Stop fits: the crossing on the rising side of D in x, i.e. the largest drop root.
+        match within(v_in - v_out, v_in).reduce(f64::max) {
+            Some(y) => fit_down((v_in - y).min(v_out), 0.0, length, d),
+            None => bisect(0.0, v_out, |x| d(x) <= length),
+        }
+    } else {
+        // d(v_in) = 0 ≤ L < d(v_out): the smallest speed drop whose ramp reaches L.
+        let y = match within(0.0, v_in - v_out).reduce(f64::min) {
+            Some(y) => fit_down(y, 0.0, length, g),
+            None => bisect(0.0, v_in - v_out, |y| g(y) <= length),
+        };
+        v_in - y
+    }
+}
+
+/// Speed drops y ∈ [0, v] with d(v, v − y) = length (NaN where absent): without plateau
+/// (y ≤ A²/J), (2v − y)·sqrt(y/J) = L, a depressed cubic s³ − 2v·s + L·sqrt(J) = 0 in s = sqrt(y)
+/// (three real roots: trigonometric form); with plateau, (2v − y)(y/A + A/J) = 2L, the quadratic
+/// y²/A + (A/J − 2v/A)·y + 2L − 2vA/J = 0.
+fn drop_roots(length: f64, v: f64, a: f64, j: f64) -> [f64; 5] {
+    let ac = a * a / j;
+    let mut out = [f64::NAN; 5];
+    for (k, s) in cubic_depressed(-2.0 * v, length * j.sqrt())
+        .into_iter()
+        .enumerate()
+    {
+        // (Roots within rounding of a regime's end are kept: both forms agree there.)
+        if s >= 0.0 && s * s <= ac.min(v) * (1.0 + ROOT_SLACK) {
+            out[k] = (s * s).min(v);
+        }
+    }
+    let (qa, qb, qc) = (1.0 / a, a / j - 2.0 * v / a, 2.0 * length - 2.0 * v * a / j);
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc >= 0.0 {
+        let w = disc.sqrt();
+        // Both roots without cancellation: the larger-magnitude one first, then c/(a·y).
+        let big = -0.5 * (qb + qb.signum() * w) / qa;
+        for (k, y) in [big, qc / (qa * big)].into_iter().enumerate() {
+            if y > ac && y <= v * (1.0 + ROOT_SLACK) {
+                out[3 + k] = y.min(v);
+            }
+        }
+    }
+    out
+}
+
 /// The block's profile: V_F if the length allows, the highest peak V_F' otherwise, and the
 /// exit speed v_out if reachable within L, the closest reachable exit otherwise (reported in v_end).
 pub fn plan(req: &BlockRequest) -> Scurve7 {
@@ -222,16 +278,7 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
             let v_end = max_exit(length, v_in, lim).min(v_out);
             return Scurve7::build(v_in, v_end, v_end, length, a, j);
         }
-        // Slowing down: D(v_in, x) is unimodal in x (see plan/mod.rs), so take the largest exit
-        // below v_out if a stop fits, else the lowest one above v_out; cruise at v_in first.
-        let d = |x: f64| ramp_distance(v_in, x, lim);
-        let v_end = if d(0.0) <= length {
-            bisect(0.0, v_out, |x| d(x) <= length)
-        } else {
-            // d(v_in) = 0 ≤ L < d(v_out): largest speed drop that fits, searched downwards from v_in.
-            let drop = bisect(0.0, v_in - v_out, |dv| d(v_in - dv) <= length);
-            v_in - drop
-        };
+        let v_end = slow_down_exit(length, v_in, v_out, lim);
         return Scurve7::build(v_in, v_in, v_end, length, a, j);
     }
     let v_hi = v_in.max(v_out);
@@ -399,5 +446,63 @@ impl FeedLaw for Scurve7 {
     }
     fn phases(&self) -> Vec<f64> {
         self.tau.to_vec()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed-form slow-down exit equals the bounded bisection it replaced, in both branches
+    /// (a stop fits / does not) and both ramp regimes (with and without plateau).
+    #[test]
+    fn slow_down_exit_matches_bisection() {
+        let lim = Limits {
+            v_max: 1.0,
+            a_max: 2.0,
+            j_max: 60.0,
+            snap_max: 0.0,
+        };
+        let mut checked = [0; 2];
+        for i in 1..=40 {
+            for k in 0..40 {
+                let v_in = 0.6 * i as f64 / 40.0;
+                let v_out = v_in * k as f64 / 40.0;
+                // Absolute lengths, and lengths just above a stop's (where D(v_in, x) rises in x).
+                let stop = ramp_distance(v_in, 0.0, &lim);
+                let rel = [1.0, 1.01, 1.05, 1.1, 1.2].map(|f| f * stop);
+                for length in [1e-6, 1e-4, 1e-3, 5e-3, 2e-2, 6e-2].into_iter().chain(rel) {
+                    if ramp_distance(v_in, v_out, &lim) <= length {
+                        continue;
+                    }
+                    let d = |x: f64| ramp_distance(v_in, x, &lim);
+                    let stop_fits = d(0.0) <= length;
+                    let want = if stop_fits {
+                        bisect(0.0, v_out, |x| d(x) <= length)
+                    } else {
+                        v_in - bisect(0.0, v_in - v_out, |y| d(v_in - y) <= length)
+                    };
+                    // The closed form found a root (no fall-back to bisection).
+                    let (lo, hi) = if stop_fits {
+                        (v_in - v_out, v_in)
+                    } else {
+                        (0.0, v_in - v_out)
+                    };
+                    let roots = drop_roots(length, v_in, lim.a_max, lim.j_max);
+                    assert!(
+                        roots.iter().any(|y| *y >= lo && *y <= hi),
+                        "{v_in} {v_out} {length}"
+                    );
+                    let got = slow_down_exit(length, v_in, v_out, &lim);
+                    assert!(d(got) <= length, "{v_in} {v_out} {length}");
+                    assert!(
+                        (got - want).abs() <= 1e-12 * v_in,
+                        "{v_in} {v_out} {length}: {got} vs {want}"
+                    );
+                    checked[stop_fits as usize] += 1;
+                }
+            }
+        }
+        assert!(checked[0] > 300 && checked[1] > 300, "{checked:?}");
     }
 }

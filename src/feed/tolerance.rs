@@ -16,3 +16,5 @@ pub const BRACKET_START: f64 = 1e-3;
 pub const PEAK_RESIDUAL: f64 = 1e-8;
 /// Relative step at which scurve7's peak Newton stops.
 pub const PEAK_STEP: f64 = 1e-15;
+/// Relative slack with which a closed-form root just outside its regime (by rounding) is kept.
+pub const ROOT_SLACK: f64 = 1e-12;
