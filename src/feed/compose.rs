@@ -8,7 +8,7 @@
 //! (`max_rise`) give it; the default is the same bracketed Newton.
 
 use super::roots::{bisect, fit_down, newton_bounded};
-use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
+use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START, RESIDUAL};
 use super::{BlockRequest, FeedLaw, Kin};
 
 /// A family of point-symmetric speed changes with a = 0 at both ends.
@@ -46,20 +46,28 @@ pub fn max_speed<R: RampLaw>(law: &R, length: f64, v0: f64) -> f64 {
 
 /// Default `max_rise`: d(v, v + u²) is increasing in u; bracket by doubling, then Newton.
 fn max_rise_newton<R: RampLaw + ?Sized>(law: &R, length: f64, v: f64) -> f64 {
-    let f = |u: f64| {
-        let w = v + u * u;
-        (distance(law, v, w) - length, 2.0 * u * distance_slope(law, v, w))
-    };
     let mut hi = v.max(BRACKET_START).sqrt();
     let mut lo = 0.0;
     for _ in 0..BRACKET_DOUBLINGS {
-        if f(hi).0 > 0.0 {
+        if distance(law, v, v + hi * hi) > length {
             break;
         }
         lo = hi;
         hi *= 2.0;
     }
-    let u = newton_bounded(lo, hi, hi, f);
+    max_rise_within(law, length, v, lo, hi)
+}
+
+/// Largest rise x = u² from v with d(v, v + x) ≤ length, given u ∈ [lo, hi] bracketing it:
+/// bracketed Newton from hi (within a few ulps; the caller makes it exact).
+pub fn max_rise_within<R: RampLaw + ?Sized>(law: &R, length: f64, v: f64, lo: f64, hi: f64) -> f64 {
+    let f = |u: f64| {
+        let x = u * u;
+        let (t, dt) = law.time(x);
+        let mean = v + 0.5 * x;
+        (mean * t - length, 2.0 * u * (0.5 * t + mean * dt))
+    };
+    let u = newton_bounded(lo, hi, hi, RESIDUAL * length, f);
     u * u
 }
 
@@ -137,17 +145,24 @@ impl Shape {
     }
 }
 
-/// Peak v ∈ [v_hi, v_cap] with D(v) = l, given D(v_hi) ≤ l < D(v_cap).
+/// Peak v ∈ [v_hi, v_cap] with D(v) = l, given D(v_hi) ≤ l < D(v_cap). Newton starts from the
+/// peak of two equal ramps from v_hi sharing what the ramp v_lo → v_hi leaves (exact when
+/// v_in = v_out, e.g. rest to rest).
 fn peak<R: RampLaw>(law: &R, l: f64, v_in: f64, v_out: f64, v_cap: f64) -> f64 {
     let v_hi = v_in.max(v_out);
     let total = |v: f64| distance(law, v_in, v) + distance(law, v, v_out);
     let f = |u: f64| {
         let v = v_hi + u * u;
-        let slope = distance_slope(law, v_in, v) + distance_slope(law, v_out, v);
-        (total(v) - l, 2.0 * u * slope)
+        let (t1, dt1) = law.time(v - v_in);
+        let (t2, dt2) = law.time(v - v_out);
+        let d = 0.5 * (v_in + v) * t1 + 0.5 * (v_out + v) * t2;
+        let slope = 0.5 * (t1 + t2) + 0.5 * (v_in + v) * dt1 + 0.5 * (v_out + v) * dt2;
+        (d - l, 2.0 * u * slope)
     };
     let u_max = (v_cap - v_hi).max(0.0).sqrt();
-    let u = newton_bounded(0.0, u_max, u_max, f);
+    let d0 = distance(law, v_in, v_out);
+    let u0 = law.max_rise(0.5 * (l - d0).max(0.0), v_hi).sqrt();
+    let u = newton_bounded(0.0, u_max, u0, RESIDUAL * l, f);
     fit_down((v_hi + u * u).clamp(v_hi, v_cap), v_hi, l, total)
 }
 

@@ -6,7 +6,7 @@
 //! distances s_cr1..s_cr4 fall out of choosing the peak acceleration below.
 
 use super::compose::{self, Composed, RampCruiseRamp, RampLaw, Shape};
-use super::{BlockRequest, Kin, Limits};
+use super::{scurve7, BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
 /// One speed change with the 7 jerk phases (durations t_j, t_2, t_j, t_4, t_j, t_2, t_j).
@@ -184,6 +184,12 @@ impl RampLaw for Law {
     fn valid(&self) -> bool {
         let (a, j) = (self.0.a_max, self.0.j_max);
         a.is_finite() && j.is_finite() && a > 0.0 && j > 0.0 && !self.0.snap_max.is_nan()
+    }
+    /// Bracketed by scurve7's closed form: without the snap limit the ramps are never slower, so
+    /// its largest rise bounds this one from above.
+    fn max_rise(&self, length: f64, v: f64) -> f64 {
+        let hi = scurve7::max_rise(length, v, &self.0).sqrt();
+        compose::max_rise_within(self, length, v, 0.0, hi)
     }
 }
 

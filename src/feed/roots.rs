@@ -4,7 +4,7 @@
 //! the two bounded fall-backs (bisection, stepping down by ulps) that make a closed-form root exact
 //! against the distance function as the laws evaluate it.
 
-use super::tolerance::{BISECTIONS, FIT_DOWN_STEPS, NEWTON_STEPS};
+use super::tolerance::{BISECTIONS, FIT_DOWN_STEPS, NEWTON_STEP, NEWTON_STEPS};
 
 /// Positive root of a·x² + b·x + c = 0 (a > 0, c ≤ 0), written without cancellation for b ≥ 0.
 pub fn quadratic_pos(a: f64, b: f64, c: f64) -> f64 {
@@ -77,30 +77,34 @@ fn polish_cubic(p: f64, q: f64, mut s: f64) -> f64 {
 }
 
 /// Root of an increasing f on [lo, hi] with f(lo) ≤ 0 < f(hi): Newton from x0, bisection whenever a
-/// step leaves the bracket (bounded). `f` returns (f(x), f'(x)). Returns the last iterate, within a
-/// few ulps of the root; the caller makes it exact with [`fit_down`].
-pub fn newton_bounded(mut lo: f64, mut hi: f64, x0: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
+/// step leaves the bracket (bounded). `f` returns (f(x), f'(x)); it stops at |f| ≤ `tol` or a Newton
+/// step below [`NEWTON_STEP`] relative (quadratic convergence: the error left is its square).
+/// Returns the last iterate, next to the root; the caller makes it exact with [`fit_down`].
+pub fn newton_bounded(mut lo: f64, mut hi: f64, x0: f64, tol: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
     let mut x = x0.clamp(lo, hi);
     for _ in 0..NEWTON_STEPS {
         let (fx, dfx) = f(x);
-        if fx.is_nan() {
+        if fx.is_nan() || fx.abs() <= tol {
             break;
         }
-        if fx <= 0.0 {
+        if fx < 0.0 {
             lo = x;
         } else {
             hi = x;
         }
         let next = x - fx / dfx;
-        let next = if next > lo && next < hi {
-            next
+        if next > lo && next < hi {
+            let small = (next - x).abs() <= NEWTON_STEP * x.abs();
+            x = next;
+            if small {
+                break;
+            }
         } else {
-            0.5 * (lo + hi)
-        };
-        if next == x || fx == 0.0 || hi - lo <= f64::EPSILON * hi {
-            break;
+            x = 0.5 * (lo + hi);
+            if hi - lo <= f64::EPSILON * hi {
+                break;
+            }
         }
-        x = next;
     }
     x
 }
@@ -163,7 +167,7 @@ mod tests {
     fn newton_bounded_is_safe_on_a_bad_derivative() {
         // x^(1/3) − 0.5 has an infinite slope at 0: the bracket keeps Newton inside.
         let f = |x: f64| (x.cbrt() - 0.5, 1.0 / (3.0 * x.cbrt().powi(2)).max(1e-300));
-        let x = newton_bounded(0.0, 1.0, 1.0, f);
+        let x = newton_bounded(0.0, 1.0, 1.0, 0.0, f);
         assert!((x - 0.125).abs() < 1e-15, "{x}");
         let x = fit_down(x, 0.0, 0.5, |x| x.cbrt());
         assert!(x.cbrt() <= 0.5);

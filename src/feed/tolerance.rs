@@ -18,3 +18,8 @@ pub const PEAK_RESIDUAL: f64 = 1e-8;
 pub const PEAK_STEP: f64 = 1e-15;
 /// Relative slack with which a closed-form root just outside its regime (by rounding) is kept.
 pub const ROOT_SLACK: f64 = 1e-12;
+/// Relative Newton step after which the bracketed Newton stops (the error left is about its square).
+pub const NEWTON_STEP: f64 = 1e-9;
+/// Residual of a distance equation, relative to the length, at which the Newton iterations stop
+/// (a few ulps: `fit_down` then takes at most a step or two).
+pub const RESIDUAL: f64 = 4.0 * f64::EPSILON;
