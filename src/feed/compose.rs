@@ -28,12 +28,6 @@ pub fn distance<R: RampLaw + ?Sized>(law: &R, v1: f64, v2: f64) -> f64 {
     0.5 * (v1 + v2) * law.time((v2 - v1).abs()).0
 }
 
-/// ∂d(v1, v2)/∂v2 for v2 > v1.
-fn distance_slope<R: RampLaw + ?Sized>(law: &R, v1: f64, v2: f64) -> f64 {
-    let (t, dt) = law.time(v2 - v1);
-    0.5 * t + 0.5 * (v1 + v2) * dt
-}
-
 /// Largest v ≥ v0 whose ramp from (or to) v0 fits in `length`: max_exit and max_entry alike.
 pub fn max_speed<R: RampLaw>(law: &R, length: f64, v0: f64) -> f64 {
     let (v0, length) = (v0.max(0.0), length.max(0.0));
