@@ -21,6 +21,10 @@ pub trait RampLaw {
     fn max_rise(&self, length: f64, v: f64) -> f64 {
         max_rise_newton(self, length, v)
     }
+    /// A cheap estimate of `max_rise`, where Newton starts for the peak speed.
+    fn rise_estimate(&self, length: f64, v: f64) -> f64 {
+        self.max_rise(length, v)
+    }
 }
 
 /// Distance of the fastest change v1 → v2: (v1 + v2)/2 · T(|v2 − v1|).
@@ -155,7 +159,7 @@ fn peak<R: RampLaw>(law: &R, l: f64, v_in: f64, v_out: f64, v_cap: f64) -> f64 {
     };
     let u_max = (v_cap - v_hi).max(0.0).sqrt();
     let d0 = distance(law, v_in, v_out);
-    let u0 = law.max_rise(0.5 * (l - d0).max(0.0), v_hi).sqrt();
+    let u0 = law.rise_estimate(0.5 * (l - d0).max(0.0), v_hi).sqrt();
     let u = newton_bounded(0.0, u_max, u0, RESIDUAL * l, f);
     fit_down((v_hi + u * u).clamp(v_hi, v_cap), v_hi, l, total)
 }

@@ -168,18 +168,23 @@ pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
 struct Law(Limits);
 
 impl RampLaw for Law {
-    fn time(&self, dv: f64) -> (f64, f64) {
-        let r = Ramp15::new(0.0, dv, &self.0);
-        let t = r.duration();
-        let (a, j, rs) = (self.0.a_max, self.0.j_max, snap(&self.0));
-        let slope = if r.t_4 > 0.0 || r.a_peak >= a {
-            1.0 / a
-        } else if r.t_2 > 0.0 || r.j_peak >= j {
-            2.0 / (j * j / rs + 2.0 * r.a_peak)
+    /// The duration of [`Ramp15::new`] without building the ramp, and its slope.
+    fn time(&self, m: f64) -> (f64, f64) {
+        let (a, j, r) = (self.0.a_max, self.0.j_max, snap(&self.0));
+        if m == 0.0 || !(a > 0.0 && j > 0.0) {
+            return (0.0, 0.0);
+        }
+        let (t_j, t_2, _) = rise(a, &self.0);
+        let rise_a = 2.0 * t_j + t_2;
+        if m >= a * rise_a {
+            (rise_a + m / a, 1.0 / a)
+        } else if m >= 2.0 * j * j * j / (r * r) {
+            let a_peak = 2.0 * m / ((j * j / (r * r) + 4.0 * m / j).sqrt() + j / r);
+            (2.0 * (j / r + a_peak / j), 2.0 / (j * j / r + 2.0 * a_peak))
         } else {
-            t / (3.0 * dv)
-        };
-        (t, slope)
+            let t = 4.0 * (m / (2.0 * r)).cbrt();
+            (t, t / (3.0 * m))
+        }
     }
     fn valid(&self) -> bool {
         let (a, j) = (self.0.a_max, self.0.j_max);
@@ -190,6 +195,9 @@ impl RampLaw for Law {
     fn max_rise(&self, length: f64, v: f64) -> f64 {
         let hi = scurve7::max_rise(length, v, &self.0).sqrt();
         compose::max_rise_within(self, length, v, 0.0, hi)
+    }
+    fn rise_estimate(&self, length: f64, v: f64) -> f64 {
+        scurve7::max_rise(length, v, &self.0)
     }
 }
 
@@ -381,6 +389,28 @@ mod tests {
             }
         }
         assert!((best - 0.16197).abs() < 1e-5 && best < 0.1639 - 1e-3, "{best}");
+    }
+
+    /// The law's T(Δv) is the duration of the ramp it stands for, and dT/dΔv its slope, in all three
+    /// regimes (triangular jerk, J reached, A reached) of both seed cases and without snap limit.
+    #[test]
+    fn ramp_law_time_and_slope() {
+        let no_snap = Limits {
+            snap_max: 0.0,
+            ..case1()
+        };
+        for lim in [case1(), case2(), no_snap] {
+            let law = Law(lim);
+            for k in 1..400 {
+                let m = 1e-5 * 1.03f64.powi(k);
+                let (t, slope) = law.time(m);
+                let want = Ramp15::new(0.0, m, &lim).duration();
+                assert!((t - want).abs() <= 1e-14 * want, "{m}: {t} vs {want}");
+                let h = 1e-7 * m;
+                let fd = (law.time(m + h).0 - law.time(m - h).0) / (2.0 * h);
+                assert!((slope - fd).abs() <= 1e-5 * fd, "{m}: {slope} vs {fd}");
+            }
+        }
     }
 
     #[test]
