@@ -119,18 +119,20 @@ impl Shape {
         }
         let v_cap = req.v_feed.min(req.limits.v_max).max(v_in).max(v_out);
         let total = |v: f64| dist(v_in, v) + dist(v, v_out);
-        let v_peak = if total(v_cap) <= l {
-            v_cap
+        let d_cap = total(v_cap);
+        let (v_peak, d_peak) = if d_cap <= l {
+            (v_cap, d_cap)
         } else if law.valid() {
             peak(law, l, v_in, v_out, v_cap)
         } else {
-            bisect(v_in.max(v_out), v_cap, |v| total(v) <= l)
+            let v = bisect(v_in.max(v_out), v_cap, |v| total(v) <= l);
+            (v, total(v))
         };
         Shape {
             v_in,
             v_peak,
             v_end: v_out,
-            cruise: l - total(v_peak),
+            cruise: l - d_peak,
         }
     }
 
@@ -143,10 +145,10 @@ impl Shape {
     }
 }
 
-/// Peak v ∈ [v_hi, v_cap] with D(v) = l, given D(v_hi) ≤ l < D(v_cap). Newton starts from the
+/// Peak v ∈ [v_hi, v_cap] with D(v) = l, given D(v_hi) ≤ l < D(v_cap), and D(v). Newton starts from the
 /// peak of two equal ramps from v_hi sharing what the ramp v_lo → v_hi leaves (exact when
 /// v_in = v_out, e.g. rest to rest).
-fn peak<R: RampLaw>(law: &R, l: f64, v_in: f64, v_out: f64, v_cap: f64) -> f64 {
+fn peak<R: RampLaw>(law: &R, l: f64, v_in: f64, v_out: f64, v_cap: f64) -> (f64, f64) {
     let v_hi = v_in.max(v_out);
     let total = |v: f64| distance(law, v_in, v) + distance(law, v, v_out);
     let f = |u: f64| {
@@ -161,7 +163,8 @@ fn peak<R: RampLaw>(law: &R, l: f64, v_in: f64, v_out: f64, v_cap: f64) -> f64 {
     let d0 = distance(law, v_in, v_out);
     let u0 = law.rise_estimate(0.5 * (l - d0).max(0.0), v_hi).sqrt();
     let u = newton_bounded(0.0, u_max, u0, RESIDUAL * l, f);
-    fit_down((v_hi + u * u).clamp(v_hi, v_cap), v_hi, l, total)
+    let v = fit_down((v_hi + u * u).clamp(v_hi, v_cap), v_hi, l, total);
+    (v, total(v))
 }
 
 /// A block as ramp (t_up, v_in → v_peak), cruise at v_peak (t_cruise), ramp (t_down, → v_end).

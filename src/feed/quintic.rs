@@ -40,15 +40,14 @@ struct Law(Limits);
 
 impl RampLaw for Law {
     fn time(&self, dv: f64) -> (f64, f64) {
-        let (t_a, t_j) = (
-            ACC_FACTOR * dv / self.0.a_max,
-            (JERK_FACTOR * dv / self.0.j_max).sqrt(),
-        );
-        let t = ramp_time(dv, &self.0);
-        if t_a >= t_j {
-            (t, ACC_FACTOR / self.0.a_max)
+        let t_a = ACC_FACTOR * dv / self.0.a_max;
+        let t_j = (JERK_FACTOR * dv / self.0.j_max).sqrt();
+        if dv == 0.0 {
+            (0.0, 0.0)
+        } else if t_a >= t_j {
+            (t_a, ACC_FACTOR / self.0.a_max)
         } else {
-            (t, 0.5 * t_j / dv)
+            (t_j, 0.5 * t_j / dv)
         }
     }
     fn valid(&self) -> bool {
