@@ -39,7 +39,7 @@ pub fn max_speed<R: RampLaw>(law: &R, length: f64, v0: f64) -> f64 {
         return largest_within(v0, length, |v| distance(law, v0, v));
     }
     let w = v0 + law.max_rise(length, v0);
-    fit_down(w, v0, length, |w| distance(law, v0, w))
+    fit_down(w, v0, length, |w| distance(law, v0, w)).0
 }
 
 /// Default `max_rise`: d(v, v + u²) is increasing in u; bracket by doubling, then Newton.
@@ -103,7 +103,8 @@ impl Shape {
         let dist = |v1: f64, v2: f64| distance(law, v1, v2);
         let l = req.length.max(0.0);
         let (v_in, v_out) = (req.v_in.max(0.0), req.v_out.max(0.0));
-        let reachable = dist(v_in, v_out) <= l; // NaN counts as unreachable
+        let d_direct = dist(v_in, v_out);
+        let reachable = d_direct <= l; // NaN counts as unreachable
         if !reachable {
             let v_end = if v_out > v_in {
                 max_speed(law, l, v_in).min(v_out)
@@ -123,7 +124,7 @@ impl Shape {
         let (v_peak, d_peak) = if d_cap <= l {
             (v_cap, d_cap)
         } else if law.valid() {
-            peak(law, l, v_in, v_out, v_cap)
+            peak(law, l, [v_in, v_out, v_cap], d_direct)
         } else {
             let v = bisect(v_in.max(v_out), v_cap, |v| total(v) <= l);
             (v, total(v))
@@ -145,10 +146,10 @@ impl Shape {
     }
 }
 
-/// Peak v ∈ [v_hi, v_cap] with D(v) = l, given D(v_hi) ≤ l < D(v_cap), and D(v). Newton starts from the
+/// Peak v ∈ [v_hi, v_cap] with D(v) = l, given D(v_hi) = d0 ≤ l < D(v_cap), and D(v). Newton starts from the
 /// peak of two equal ramps from v_hi sharing what the ramp v_lo → v_hi leaves (exact when
 /// v_in = v_out, e.g. rest to rest).
-fn peak<R: RampLaw>(law: &R, l: f64, v_in: f64, v_out: f64, v_cap: f64) -> (f64, f64) {
+fn peak<R: RampLaw>(law: &R, l: f64, [v_in, v_out, v_cap]: [f64; 3], d0: f64) -> (f64, f64) {
     let v_hi = v_in.max(v_out);
     let total = |v: f64| distance(law, v_in, v) + distance(law, v, v_out);
     let f = |u: f64| {
@@ -160,11 +161,9 @@ fn peak<R: RampLaw>(law: &R, l: f64, v_in: f64, v_out: f64, v_cap: f64) -> (f64,
         (d - l, 2.0 * u * slope)
     };
     let u_max = (v_cap - v_hi).max(0.0).sqrt();
-    let d0 = distance(law, v_in, v_out);
     let u0 = law.rise_estimate(0.5 * (l - d0).max(0.0), v_hi).sqrt();
     let u = newton_bounded(0.0, u_max, u0, RESIDUAL * l, f);
-    let v = fit_down((v_hi + u * u).clamp(v_hi, v_cap), v_hi, l, total);
-    (v, total(v))
+    fit_down((v_hi + u * u).clamp(v_hi, v_cap), v_hi, l, total)
 }
 
 /// A block as ramp (t_up, v_in → v_peak), cruise at v_peak (t_cruise), ramp (t_down, → v_end).

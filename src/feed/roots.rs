@@ -127,17 +127,18 @@ pub fn bisect(mut good: f64, mut bad: f64, ok: impl Fn(f64) -> bool) -> f64 {
 }
 
 /// Step `w` down towards `floor` (a few ulps at first, doubling) until f(w) ≤ target; f(floor) ≤
-/// target is known, so at most a bounded number of steps.
-pub fn fit_down(mut w: f64, floor: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
+/// target is known, so at most a bounded number of steps. Returns w and f(w).
+pub fn fit_down(mut w: f64, floor: f64, target: f64, f: impl Fn(f64) -> f64) -> (f64, f64) {
     let mut step = w * f64::EPSILON;
     for _ in 0..FIT_DOWN_STEPS {
-        if f(w) <= target || w <= floor {
-            break;
+        let fw = f(w);
+        if fw <= target || w <= floor {
+            return (w, fw);
         }
         w = (w - step).max(floor);
         step *= 2.0;
     }
-    w.max(floor)
+    (w, f(w))
 }
 
 #[cfg(test)]
@@ -169,7 +170,8 @@ mod tests {
         let f = |x: f64| (x.cbrt() - 0.5, 1.0 / (3.0 * x.cbrt().powi(2)).max(1e-300));
         let x = newton_bounded(0.0, 1.0, 1.0, 0.0, f);
         assert!((x - 0.125).abs() < 1e-15, "{x}");
-        let x = fit_down(x, 0.0, 0.5, |x| x.cbrt());
+        let (x, fx) = fit_down(x, 0.0, 0.5, |x| x.cbrt());
+        assert_eq!(fx, x.cbrt());
         assert!(x.cbrt() <= 0.5);
         assert!((bisect(0.0, 1.0, |x| x * x <= 0.25) - 0.5).abs() < 1e-15);
     }

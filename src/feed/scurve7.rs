@@ -120,7 +120,7 @@ pub(super) fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
 fn max_speed_fitting(length: f64, v: f64, lim: &Limits) -> f64 {
     let v = v.max(0.0);
     let w = v + max_rise(length, v, lim);
-    fit_down(w, v, length, |w| ramp_distance(v, w, lim))
+    fit_down(w, v, length, |w| ramp_distance(v, w, lim)).0
 }
 
 /// Largest entry speed v_in ≥ v_out from which the S-curve slows to v_out within `length`.
@@ -212,13 +212,13 @@ fn slow_down_exit(length: f64, v_in: f64, v_out: f64, lim: &Limits) -> f64 {
     if d(0.0) <= length {
         // Stop fits: the crossing on the rising side of D in x, i.e. the largest drop root.
         match within(v_in - v_out, v_in).reduce(f64::max) {
-            Some(y) => fit_down((v_in - y).min(v_out), 0.0, length, d),
+            Some(y) => fit_down((v_in - y).min(v_out), 0.0, length, d).0,
             None => bisect(0.0, v_out, |x| d(x) <= length),
         }
     } else {
         // d(v_in) = 0 ≤ L < d(v_out): the smallest speed drop whose ramp reaches L.
         let y = match within(0.0, v_in - v_out).reduce(f64::min) {
-            Some(y) => fit_down(y, 0.0, length, g),
+            Some(y) => fit_down(y, 0.0, length, g).0,
             None => bisect(0.0, v_in - v_out, |y| g(y) <= length),
         };
         v_in - y
@@ -291,7 +291,7 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
             // V_F' (seed cases 3–6), then made to fit with the speed as stored: v_c = v_hi + u²
             // rounds, and a short ramp's distance is sensitive to it.
             let v_c = solve_peak(length, v_in, v_out, v_cap, a, j);
-            fit_down(v_c, v_hi, length, total)
+            fit_down(v_c, v_hi, length, total).0
         }
     } else {
         // V_F below an end speed (the look-ahead never asks this): cruise at V_F if the length
