@@ -156,48 +156,70 @@ pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
 }
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
-    compose::max_speed(&Law(*lim), length, v_out)
+    compose::max_speed(&Law::new(lim), length, v_out)
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
-    compose::max_speed(&Law(*lim), length, v_in)
+    compose::max_speed(&Law::new(lim), length, v_in)
 }
 
 /// The 15-phase ramp as a [`RampLaw`]. With the peak acceleration a: T = T_rise(A) + Δv/A when A is
 /// reached; T = 2(J/R + a/J) with a(J/R + a/J) = Δv when only J is; T = 4·(Δv/2R)^(1/3) otherwise.
-struct Law(Limits);
+struct Law {
+    lim: Limits,
+    /// Rise time 2t_j + t_2 of the acceleration to A, and the Δv bounds of the three regimes.
+    rise_a: f64,
+    dv_a: f64,
+    dv_j: f64,
+    /// J/R and J²/R (0 without snap limit).
+    j_r: f64,
+    jj_r: f64,
+}
+
+impl Law {
+    fn new(lim: &Limits) -> Law {
+        let (a, j, r) = (lim.a_max, lim.j_max, snap(lim));
+        let (t_j, t_2, _) = rise(a, lim);
+        let rise_a = 2.0 * t_j + t_2;
+        Law {
+            lim: *lim,
+            rise_a,
+            dv_a: a * rise_a,
+            dv_j: 2.0 * j * j * j / (r * r),
+            j_r: j / r,
+            jj_r: j * j / r,
+        }
+    }
+}
 
 impl RampLaw for Law {
     /// The duration of [`Ramp15::new`] without building the ramp, and its slope.
     fn time(&self, m: f64) -> (f64, f64) {
-        let (a, j, r) = (self.0.a_max, self.0.j_max, snap(&self.0));
+        let (a, j) = (self.lim.a_max, self.lim.j_max);
         if m == 0.0 || !(a > 0.0 && j > 0.0) {
-            return (0.0, 0.0);
-        }
-        let (t_j, t_2, _) = rise(a, &self.0);
-        let rise_a = 2.0 * t_j + t_2;
-        if m >= a * rise_a {
-            (rise_a + m / a, 1.0 / a)
-        } else if m >= 2.0 * j * j * j / (r * r) {
-            let a_peak = 2.0 * m / ((j * j / (r * r) + 4.0 * m / j).sqrt() + j / r);
-            (2.0 * (j / r + a_peak / j), 2.0 / (j * j / r + 2.0 * a_peak))
+            (0.0, 0.0)
+        } else if m >= self.dv_a {
+            (self.rise_a + m / a, 1.0 / a)
+        } else if m >= self.dv_j {
+            let a_peak = 2.0 * m / ((self.j_r * self.j_r + 4.0 * m / j).sqrt() + self.j_r);
+            (2.0 * (self.j_r + a_peak / j), 2.0 / (self.jj_r + 2.0 * a_peak))
         } else {
-            let t = 4.0 * (m / (2.0 * r)).cbrt();
+            let t = 4.0 * (m / (2.0 * snap(&self.lim))).cbrt();
             (t, t / (3.0 * m))
         }
     }
     fn valid(&self) -> bool {
-        let (a, j) = (self.0.a_max, self.0.j_max);
-        a.is_finite() && j.is_finite() && a > 0.0 && j > 0.0 && !self.0.snap_max.is_nan()
+        let (a, j) = (self.lim.a_max, self.lim.j_max);
+        a.is_finite() && j.is_finite() && a > 0.0 && j > 0.0 && !self.lim.snap_max.is_nan()
     }
     /// Bracketed by scurve7's closed form: without the snap limit the ramps are never slower, so
     /// its largest rise bounds this one from above.
     fn max_rise(&self, length: f64, v: f64) -> f64 {
-        let hi = scurve7::max_rise(length, v, &self.0).sqrt();
+        let hi = scurve7::max_rise(length, v, &self.lim).sqrt();
         compose::max_rise_within(self, length, v, 0.0, hi)
     }
     fn rise_estimate(&self, length: f64, v: f64) -> f64 {
-        scurve7::max_rise(length, v, &self.0)
+        scurve7::max_rise(length, v, &self.lim)
     }
 }
 
@@ -214,7 +236,7 @@ pub struct Jerk15 {
 
 pub fn plan(req: &BlockRequest) -> Jerk15 {
     let lim = req.limits;
-    let shape = Shape::solve(&Law(lim), req);
+    let shape = Shape::solve(&Law::new(&lim), req);
     Jerk15 {
         v_in: shape.v_in,
         v_peak: shape.v_peak,
@@ -400,7 +422,7 @@ mod tests {
             ..case1()
         };
         for lim in [case1(), case2(), no_snap] {
-            let law = Law(lim);
+            let law = Law::new(&lim);
             for k in 1..400 {
                 let m = 1e-5 * 1.03f64.powi(k);
                 let (t, slope) = law.time(m);
