@@ -18,6 +18,7 @@ pub mod package;
 pub mod path;
 pub mod plan;
 pub mod servo;
+pub mod tolerance;
 
 /// A point or vector in machine axes X, Y, Z (m).
 pub type Vec3 = [f64; 3];

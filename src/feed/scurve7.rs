@@ -14,12 +14,9 @@
 //! monotonically to it). Rest to rest this is the time-optimal profile.
 
 use super::roots::{bisect, cubic_depressed, cubic_pos, fit_down, quadratic_pos};
-use super::tolerance::{PEAK_RESIDUAL, PEAK_STEP, ROOT_SLACK};
+use super::tolerance::{PEAK_NEWTON_STEPS, PEAK_RESIDUAL, PEAK_STEP, ROOT_SLACK};
 use super::{BlockRequest, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
-
-/// Newton steps for the peak speed (quadratic convergence from a Cardano start: 3–6 used).
-const NEWTON_STEPS: usize = 40;
 
 /// Phase durations `tau`, the jerk of the two ramps and the distance and speed at each phase
 /// start, so that `at(t)` is one cubic (eq. 1–7). Kept to 26 numbers (the `Profile` enum holds it
@@ -183,7 +180,7 @@ fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) ->
     // rest: 2(2v + u²)·u/sqrt(J) = L), shifted by the ramp v_lo → v_hi.
     let d0 = peak_distance(0.0, v_in, v_out, a, j).0;
     let mut u = cubic_pos(2.0 * v_hi, 0.5 * (length - d0).max(0.0) * j.sqrt()).min(u_max);
-    for _ in 0..NEWTON_STEPS {
+    for _ in 0..PEAK_NEWTON_STEPS {
         let (d, g) = peak_distance(u, v_in, v_out, a, j);
         if g.is_nan() || g <= 0.0 {
             break;

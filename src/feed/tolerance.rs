@@ -23,3 +23,5 @@ pub const NEWTON_STEP: f64 = 1e-9;
 /// Residual of a distance equation, relative to the length, at which the Newton iterations stop
 /// (a few ulps: `fit_down` then takes at most a step or two).
 pub const RESIDUAL: f64 = 4.0 * f64::EPSILON;
+/// Newton steps of scurve7's peak speed (quadratic convergence from a Cardano start: 3–6 used).
+pub const PEAK_NEWTON_STEPS: usize = 40;
