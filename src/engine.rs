@@ -45,7 +45,6 @@ pub struct Engine {
     hold_applied: bool,
     /// The rest of the path during a hold, planned again from rest at the release.
     held: Vec<PathBlock>,
-    servo: bool,
     /// The three drives when the servo model is on, and the time they have reached.
     drives: Option<Vec<ServoAxis>>,
     servo_time: f64,
@@ -88,7 +87,6 @@ impl Engine {
             replan_pending: false,
             hold_applied: false,
             held: Vec::new(),
-            servo: false,
             drives: None,
             servo_time: 0.0,
             feed_override: 1.0,
@@ -104,7 +102,6 @@ impl Engine {
 
     /// Switch the servo-axis model on (the FMU always does; the CLI with `--servo`).
     pub fn with_servo(mut self, on: bool) -> Engine {
-        self.servo = on;
         self.drives = on.then(|| {
             (0..3)
                 .map(|i| ServoAxis::new(self.machine.servo[i], self.tick.p[i]))

@@ -3,7 +3,7 @@
 use cnc_motion::feed::{scurve7, trapezoid, BlockRequest, FeedLaw, Limits};
 use proptest::prelude::*;
 
-const MM: f64 = 1e-3;
+use cnc_motion::config::MM;
 /// A picometre: speeds are stored absolute, so a speed change of 1e-10 m/s on top of 0.3 m/s keeps
 /// only ~7 digits; the distances it implies are exact to far below this.
 const PM: f64 = 1e-12;

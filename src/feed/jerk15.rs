@@ -277,7 +277,7 @@ mod tests {
     use super::*;
     use crate::feed::FeedLaw;
 
-    const MM: f64 = 1e-3;
+    use crate::config::MM;
 
     /// Seed 001 first example (t_v > t_a > t_j) and second (t_v ≤ t_a < t_j), in SI.
     fn case1() -> Limits {

@@ -218,7 +218,7 @@ mod tests {
     use super::*;
     use crate::feed::FeedLaw;
 
-    const MM: f64 = 1e-3;
+    use crate::config::MM;
 
     fn lim() -> Limits {
         // Seed 002 §III: v_f = 60 mm/s, a_max = 3000 mm/s², J = 200 m/s³.

@@ -140,16 +140,6 @@ impl Profile {
             ProfileKind::Trapezoid => Profile::Trapezoid(trapezoid::plan(req)),
         }
     }
-
-    pub fn kind(&self) -> ProfileKind {
-        match self {
-            Profile::Scurve7(_) => ProfileKind::Scurve7,
-            Profile::Quintic(_) => ProfileKind::Quintic,
-            Profile::Jerk15(_) => ProfileKind::Jerk15,
-            Profile::Mixed57(_) => ProfileKind::Mixed57,
-            Profile::Trapezoid(_) => ProfileKind::Trapezoid,
-        }
-    }
 }
 
 impl FeedLaw for Profile {

@@ -386,15 +386,6 @@ impl Scurve7 {
         let a2 = self.ramp_jerk[1] * self.tau[4];
         [0.0, a1, a1, 0.0, 0.0, a2, a2]
     }
-
-    /// Start time of each phase (s).
-    pub fn t_start(&self) -> [f64; 7] {
-        let mut t = [0.0; 7];
-        for k in 1..7 {
-            t[k] = t[k - 1] + self.tau[k - 1];
-        }
-        t
-    }
 }
 
 /// Change of (s, v, a) over dt from speed v, acceleration a, constant jerk (eq. 1–7).

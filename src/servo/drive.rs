@@ -198,10 +198,6 @@ impl ServoAxis {
         }
     }
 
-    pub fn params(&self) -> &ServoParams {
-        &self.params
-    }
-
     fn lead_radius(&self) -> f64 {
         self.params.screw_lead / (2.0 * std::f64::consts::PI)
     }
