@@ -5,6 +5,9 @@
 //! the 1-D time-optimal bound (the 7-phase rest-to-rest law over the same length at the feed;
 //! it equals Ruckig's to 1e-9, tests/python/test_ruckig.py).
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::config::{AxisLimits, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};

@@ -1,6 +1,9 @@
 //! scurve7 against the seeds (004 appendix, 001 Table 1), Ruckig, and the properties every block
 //! profile must have (one file: the former feed_scurve7_cases.rs tested the same seed cases).
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::feed::{scurve7, trapezoid, BlockRequest, FeedLaw, Limits};
 use proptest::prelude::*;
 

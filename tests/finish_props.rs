@@ -5,6 +5,9 @@
 //! tick and axis). In the default (smooth) mode every tick also stays within the path tolerance
 //! of the programmed geometry.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::config::{CornerMode, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::ProfileKind;

@@ -1,5 +1,8 @@
 //! The G-code reader: every supported word, each refusal with its place, streaming.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::gcode::{validate, Block, Motion, PathMode, Plane, Reader, StopKind};
 use proptest::prelude::*;
 use std::sync::Arc;
