@@ -54,32 +54,18 @@ fn corrupted_states_are_refused_or_stay_finite() {
     for _ in 0..20 {
         f.do_step(1e-3).unwrap();
     }
-    let good = String::from_utf8(f.serialize()).unwrap();
-    let numbers = ["1e308", "-1e308", "5e-324", "0", "-1", "1e30", "NaN", "1e400"];
+    // The state is binary (bincode): overwrite 8 bytes at a random offset with an extreme f64,
+    // which lands on a number of the state or across two of them.
+    let good = f.serialize();
+    let numbers = [1e308, -1e308, 5e-324, 0.0, -1.0, 1e30, f64::NAN, f64::INFINITY];
     let (mut refused, mut accepted) = (0, 0);
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
     for _ in 0..1000 {
-        // Replace one number of the JSON by an extreme one.
-        let starts: Vec<usize> = good
-            .char_indices()
-            .filter(|&(i, c)| {
-                (c.is_ascii_digit() || c == '-')
-                    && !good[..i].ends_with(|p: char| p.is_ascii_digit() || p == '.' || p == 'e' || p == '-')
-            })
-            .map(|(i, _)| i)
-            .collect();
-        let at = starts[(rng.next() % starts.len() as u64) as usize];
-        let len = good[at..]
-            .find(|c: char| !(c.is_ascii_digit() || "+-.eE".contains(c)))
-            .unwrap();
-        let bad = format!(
-            "{}{}{}",
-            &good[..at],
-            numbers[(rng.next() % 8) as usize],
-            &good[at + len..]
-        );
+        let at = (rng.next() % (good.len() - 8) as u64) as usize;
+        let mut bad = good.clone();
+        bad[at..at + 8].copy_from_slice(&numbers[(rng.next() % 8) as usize].to_le_bytes());
         let mut g = fmu();
-        match g.deserialize(bad.as_bytes()) {
+        match g.deserialize(&bad) {
             Err(e) => {
                 assert!(e.starts_with("MachineStructure state: "), "{e}");
                 refused += 1;
@@ -95,7 +81,7 @@ fn corrupted_states_are_refused_or_stay_finite() {
                         let out = [s.deflection(vr), s.acceleration(vr), s.load_force(vr)];
                         assert!(
                             out.iter().all(|v| v.is_finite()),
-                            "NaN with OK at step {k}: {bad}"
+                            "NaN with OK at step {k} (bytes {at}…)"
                         );
                     }
                 }
@@ -103,5 +89,5 @@ fn corrupted_states_are_refused_or_stay_finite() {
         }
     }
     eprintln!("corrupted states: {refused} refused, {accepted} accepted and finite");
-    assert!(refused > 300 && accepted > 100, "{refused} / {accepted}");
+    assert!(refused > 100 && accepted > 100, "{refused} / {accepted}");
 }
