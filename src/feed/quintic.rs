@@ -2,6 +2,7 @@
 //! F(t) = F_s + a3 t³ + a4 t⁴ + a5 t⁵ (eq. 2.14) with a = j = 0 at both ends (eq. 2.11–2.17), over the
 //! ramp time t_d of eq. 2.28. A block is ramp – cruise – ramp (`compose`); the largest ramp in a
 //! length is a cubic (t_d by the jerk) or a quadratic (t_d by the acceleration) in closed form.
+
 use super::compose::{self, Composed, RampCruiseRamp, RampLaw, Shape};
 use super::roots::{cubic_pos, quadratic_pos};
 use super::{BlockRequest, Kin, Limits};
