@@ -205,6 +205,46 @@ impl<T: RampCruiseRamp> FeedLaw for T {
     }
 }
 
+/// A speed change kept as a record (jerk15's 7 jerk phases, mixed57's 3).
+pub trait Ramp {
+    fn duration(&self) -> f64;
+    /// State τ after the ramp's start from speed v1, s from there.
+    fn at(&self, v1: f64, tau: f64) -> Kin;
+}
+
+/// A block of two ramp records around a cruise: its `RampCruiseRamp` (so `FeedLaw`) follows.
+pub trait TwoRamps {
+    type Ramp: Ramp;
+    /// ([v_in, v_peak, v_end], up, t_cruise, down).
+    fn parts(&self) -> ([f64; 3], &Self::Ramp, f64, &Self::Ramp);
+    fn ramp_phases(&self) -> Vec<f64>;
+}
+
+impl<T: TwoRamps> RampCruiseRamp for T {
+    fn composed(&self) -> Composed {
+        let ([v_in, v_peak, v_end], up, t_cruise, down) = self.parts();
+        Composed {
+            v_in,
+            v_peak,
+            v_end,
+            t_up: up.duration(),
+            t_cruise,
+            t_down: down.duration(),
+        }
+    }
+    fn up_at(&self, tau: f64) -> Kin {
+        let ([v_in, ..], up, ..) = self.parts();
+        up.at(v_in, tau)
+    }
+    fn down_at(&self, tau: f64) -> Kin {
+        let ([_, v_peak, _], .., down) = self.parts();
+        down.at(v_peak, tau)
+    }
+    fn phase_list(&self) -> Vec<f64> {
+        self.ramp_phases()
+    }
+}
+
 impl Composed {
     pub fn duration(&self) -> f64 {
         self.t_up + self.t_cruise + self.t_down

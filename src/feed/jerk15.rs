@@ -5,7 +5,7 @@
 //! the seed (t_v > t_a > t_j: J and A are reached; t_v ≤ t_a < t_j: neither is) and the critical
 //! distances s_cr1..s_cr4 fall out of choosing the peak acceleration below.
 
-use super::compose::{self, Composed, RampCruiseRamp, RampLaw, Shape};
+use super::compose::{self, RampLaw, Shape, TwoRamps};
 use super::{scurve7, BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
@@ -247,24 +247,26 @@ pub fn plan(req: &BlockRequest) -> Jerk15 {
     }
 }
 
-impl RampCruiseRamp for Jerk15 {
-    fn composed(&self) -> Composed {
-        Composed {
-            v_in: self.v_in,
-            v_peak: self.v_peak,
-            v_end: self.v_end,
-            t_up: self.up.duration(),
-            t_cruise: self.t_cruise,
-            t_down: self.down.duration(),
-        }
+impl compose::Ramp for Ramp15 {
+    fn duration(&self) -> f64 {
+        Ramp15::duration(self)
     }
-    fn up_at(&self, tau: f64) -> Kin {
-        self.up.at(self.v_in, tau)
+    fn at(&self, v1: f64, tau: f64) -> Kin {
+        Ramp15::at(self, v1, tau)
     }
-    fn down_at(&self, tau: f64) -> Kin {
-        self.down.at(self.v_peak, tau)
+}
+
+impl TwoRamps for Jerk15 {
+    type Ramp = Ramp15;
+    fn parts(&self) -> ([f64; 3], &Ramp15, f64, &Ramp15) {
+        (
+            [self.v_in, self.v_peak, self.v_end],
+            &self.up,
+            self.t_cruise,
+            &self.down,
+        )
     }
-    fn phase_list(&self) -> Vec<f64> {
+    fn ramp_phases(&self) -> Vec<f64> {
         let mut p = self.up.phases().to_vec();
         p.push(self.t_cruise);
         p.extend(self.down.phases());

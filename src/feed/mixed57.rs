@@ -9,7 +9,7 @@
 //!
 //! Phases: 3 for the ramp up (jerk, constant acceleration, jerk), the cruise, 3 for the ramp down.
 
-use super::compose::{self, Composed, RampCruiseRamp, RampLaw, Shape};
+use super::compose::{self, RampLaw, Shape, TwoRamps};
 use super::jerk15::symmetric_ramp_at;
 use super::{scurve7, BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
@@ -183,24 +183,26 @@ pub fn plan(req: &BlockRequest) -> Mixed57 {
     }
 }
 
-impl RampCruiseRamp for Mixed57 {
-    fn composed(&self) -> Composed {
-        Composed {
-            v_in: self.v_in,
-            v_peak: self.v_peak,
-            v_end: self.v_end,
-            t_up: self.up.duration(),
-            t_cruise: self.t_cruise,
-            t_down: self.down.duration(),
-        }
+impl compose::Ramp for Ramp57 {
+    fn duration(&self) -> f64 {
+        Ramp57::duration(self)
     }
-    fn up_at(&self, tau: f64) -> Kin {
-        self.up.at(self.v_in, tau)
+    fn at(&self, v1: f64, tau: f64) -> Kin {
+        Ramp57::at(self, v1, tau)
     }
-    fn down_at(&self, tau: f64) -> Kin {
-        self.down.at(self.v_peak, tau)
+}
+
+impl TwoRamps for Mixed57 {
+    type Ramp = Ramp57;
+    fn parts(&self) -> ([f64; 3], &Ramp57, f64, &Ramp57) {
+        (
+            [self.v_in, self.v_peak, self.v_end],
+            &self.up,
+            self.t_cruise,
+            &self.down,
+        )
     }
-    fn phase_list(&self) -> Vec<f64> {
+    fn ramp_phases(&self) -> Vec<f64> {
         vec![
             self.up.t_j,
             self.up.t_a,
