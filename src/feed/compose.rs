@@ -3,9 +3,9 @@
 //! Every ramp of these laws is point-symmetric, so the fastest change v1 → v2 covers its mean speed
 //! times its duration T(|v2 − v1|): a law only gives T and dT/dΔv ([`RampLaw`]). The peak speed of a
 //! block too short for its feed is the root of D(v) = d(v_in, v) + d(v, v_out) = L, increasing in
-//! v: bracketed Newton in u = sqrt(v − max(v_in, v_out)) from the right end of the bracket, then
-//! made exact against D as evaluated (a few ulps down). Laws with a closed-form largest ramp
-//! (`max_rise`) give it; the default is the same bracketed Newton.
+//! v: bracketed Newton in u = sqrt(v − max(v_in, v_out)), started from two equal ramps from the
+//! higher end speed (`rise_estimate`), then made exact against D as evaluated (a few ulps down).
+//! Laws with a closed-form largest ramp (`max_rise`) give it; the default is the same Newton.
 
 use super::roots::{bisect, fit_down, newton_bounded};
 use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START, RESIDUAL};
