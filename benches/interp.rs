@@ -1,5 +1,8 @@
 //! Interpolation cost: ns per tick (reader, path, plan and interpolation amortised over a program,
 //! as the FMU runs it), and the worst single tick measured over a whole run.
+
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
 use criterion::{criterion_group, criterion_main, Criterion};

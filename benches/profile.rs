@@ -1,4 +1,7 @@
 //! ns per single-block profile, general case (V_in ≠ 0, V_out ≠ 0, cruise not reached), per law.
+
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;

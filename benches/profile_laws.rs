@@ -1,4 +1,7 @@
 //! Planning and evaluating one general block (v_in, v_out ≠ 0, too short for the feed) per law.
+
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 

@@ -1,4 +1,7 @@
 //! ns per 1 ms interpolation period for three servo axes at the default 8 kHz servo rate.
+
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
 use cnc_motion::servo::{AxisCommand, ServoAxis, ServoParams};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;

@@ -1,4 +1,7 @@
 //! Print the chains of a program: pieces, derivative bounds and limits (debugging aid).
+
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
 use cnc_motion::config::Machine;
 use cnc_motion::gcode::Reader;
 use cnc_motion::path::{Curve, PathBuilder, Segment};

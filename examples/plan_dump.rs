@@ -1,4 +1,7 @@
 //! Print the planned segments of a program: line, kind, length, v_in, v_out, duration.
+
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
 use cnc_motion::config::Machine;
 use cnc_motion::feed::FeedLaw;
 use cnc_motion::gcode::Reader;

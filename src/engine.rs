@@ -10,6 +10,7 @@ use crate::path::Segment;
 use crate::path::{PathBlock, PathBuilder};
 use crate::plan::{Planned, Planner};
 use crate::servo::{AxisCommand, AxisState, ServoAxis};
+use crate::tolerance::{PERIOD_SLACK, SPEED_MARGIN};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -44,7 +45,6 @@ pub struct Engine {
     hold_applied: bool,
     /// The rest of the path during a hold, planned again from rest at the release.
     held: Vec<PathBlock>,
-    servo: bool,
     /// The three drives when the servo model is on, and the time they have reached.
     drives: Option<Vec<ServoAxis>>,
     servo_time: f64,
@@ -87,7 +87,6 @@ impl Engine {
             replan_pending: false,
             hold_applied: false,
             held: Vec::new(),
-            servo: false,
             drives: None,
             servo_time: 0.0,
             feed_override: 1.0,
@@ -103,7 +102,6 @@ impl Engine {
 
     /// Switch the servo-axis model on (the FMU always does; the CLI with `--servo`).
     pub fn with_servo(mut self, on: bool) -> Engine {
-        self.servo = on;
         self.drives = on.then(|| {
             (0..3)
                 .map(|i| ServoAxis::new(self.machine.servo[i], self.tick.p[i]))
@@ -258,7 +256,7 @@ impl Engine {
         let period = self.machine.interpolation_period;
         let t_end = self.time + h.max(0.0);
         // A tick within a billionth of a period of the end belongs to this step (rounding of t).
-        let slack = 1e-9 * period;
+        let slack = PERIOD_SLACK * period;
         loop {
             let t_tick = (self.ticks + 1) as f64 * period;
             if t_tick > t_end + slack {
@@ -284,7 +282,7 @@ impl Engine {
         // A remainder of rounding size (a communication point a hair past a tick) is not a step:
         // it would start a servo period on the new command and make the result depend on how the
         // importer sums its time.
-        if dt <= 1e-9 * self.machine.interpolation_period {
+        if dt <= PERIOD_SLACK * self.machine.interpolation_period {
             return;
         }
         for (i, d) in drives.iter_mut().enumerate() {
@@ -382,7 +380,7 @@ impl Engine {
                 (rest.v_feed * scale).min(rest.limits.v_max)
             };
             let length = rest.segment.length();
-            if v_cur > target * (1.0 + 1e-12) && !matches!(rest.segment, Segment::Dwell { .. }) {
+            if v_cur > target * (1.0 + SPEED_MARGIN) && !matches!(rest.segment, Segment::Dwell { .. }) {
                 let d = feed::ramp_distance(kind, v_cur, target, &rest.limits);
                 let request = |length: f64| BlockRequest {
                     length,
@@ -422,7 +420,7 @@ impl Engine {
                         v_out: v_start,
                         profile,
                     });
-                    settled = v_start <= target * (1.0 + 1e-12);
+                    settled = v_start <= target * (1.0 + SPEED_MARGIN);
                 }
             } else {
                 blocks.push(rest);

@@ -6,6 +6,14 @@
 //! `engine` strings the stages together for the CLI and the FMU; `model` is the FMU's variable table.
 //! Inside the library everything is SI (m, s, m/s, m/s², m/s³).
 
+// `unused_crate_dependencies` (workspace lints) sees the library alone: these are the binary's
+// dependencies (one package, one list), and in the unit-test build the integration tests'.
+use clap as _;
+use indicatif as _;
+use serde_json as _;
+#[cfg(test)]
+use {criterion as _, libc as _, libloading as _, proptest as _};
+
 pub mod config;
 pub mod engine;
 pub mod error;
@@ -18,6 +26,7 @@ pub mod package;
 pub mod path;
 pub mod plan;
 pub mod servo;
+pub mod tolerance;
 
 /// A point or vector in machine axes X, Y, Z (m).
 pub type Vec3 = [f64; 3];

@@ -5,7 +5,10 @@
 //! the 1-D time-optimal bound (the 7-phase rest-to-rest law over the same length at the feed;
 //! it equals Ruckig's to 1e-9, tests/python/test_ruckig.py).
 
-use cnc_motion::config::{AxisLimits, Machine};
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
+use cnc_motion::config::{AxisLimits, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use cnc_motion::gcode::Plane;
@@ -14,7 +17,6 @@ use std::f64::consts::{PI, TAU};
 use std::fmt::Write;
 use std::sync::Arc;
 
-const MM: f64 = 1e-3;
 const A: f64 = 2.0;
 const J: f64 = 50.0;
 const V: f64 = 0.25;

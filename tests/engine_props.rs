@@ -2,6 +2,9 @@
 //! every interpolated axis velocity, acceleration and jerk within its limit (analytic values and
 //! finite differences of the emitted positions), end point exact, path length conserved.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::ProfileKind;

@@ -2,6 +2,9 @@
 //! limits, exact end point, v ≥ 0, a = 0 at both ends, and never faster than the time-optimal
 //! 7-phase law on rest-to-rest blocks.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::feed::{self, BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use proptest::prelude::*;
 

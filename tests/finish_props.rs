@@ -5,7 +5,10 @@
 //! tick and axis). In the default (smooth) mode every tick also stays within the path tolerance
 //! of the programmed geometry.
 
-use cnc_motion::config::{CornerMode, Machine};
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
+use cnc_motion::config::{CornerMode, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::ProfileKind;
 use cnc_motion::gcode::Plane;
@@ -13,8 +16,6 @@ use cnc_motion::path::{Arc as ArcGeo, Line, Source};
 use proptest::prelude::*;
 use std::fmt::Write;
 use std::sync::Arc;
-
-const MM: f64 = 1e-3;
 
 #[derive(Clone, Debug)]
 struct Step {

@@ -1,6 +1,9 @@
 //! The built CncMotion shared library driven through its C ABI, as an importer does it (libloading):
 //! a full run of the default program, and every kind of bad call answered with fmi2Error.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use libloading::{Library, Symbol};
 use std::ffi::{c_char, c_int, c_uint, c_void, CStr, CString};
 use std::path::PathBuf;

@@ -12,6 +12,9 @@
 //! Deterministic: CNC_FUZZ_SEED (default below, as `.ci/run` pins) and CNC_FUZZ_CASES (default
 //! 5000); `make fuzz` runs a fresh seed with more cases. Prints the outcome table.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
 use cnc_motion::error::ProgramError;

@@ -1,6 +1,9 @@
 //! Issue 11, machine files and FMU parameters: one table of ranges, located errors in the CLI,
 //! errors (never a hang, an abort or NaN with status OK) in the FMU.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::config::Machine;
 use cnc_motion::fmu::CncMotionFmu;
 use cnc_motion::model::CncMotion;

@@ -4,6 +4,9 @@
 //! 126 mm/min; the paper's own model: 72, 222, 135, 148, 150, 158, 91, RMS error 29.8 mm/min).
 //! Table 1's jerk of 60 m/s³ on passage of a discontinuity is `max_transition_jerk_mm_s3`.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
 use std::sync::Arc;

@@ -1,5 +1,8 @@
 //! The servo-axis model against closed forms and an independent integration.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use cnc_motion::servo::{expm, plant_matrix, AxisCommand, ServoAxis, ServoParams};
 
 const T: f64 = 1e-3;

@@ -171,8 +171,9 @@ pub struct MachineFile {
     pub servo: Option<ServoFile>,
 }
 
-const MM: f64 = 1e-3;
-const MM_MIN: f64 = 1e-3 / 60.0;
+/// One millimetre (m) and one mm/min (m/s): machine files and tests write their numbers in these.
+pub const MM: f64 = 1e-3;
+pub const MM_MIN: f64 = 1e-3 / 60.0;
 
 impl Machine {
     /// Parse a machine file; errors name `file:line:col`.

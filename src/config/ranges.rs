@@ -37,8 +37,7 @@ const fn r(
     }
 }
 
-const MM: f64 = 1e-3;
-const MM_MIN: f64 = 1e-3 / 60.0;
+use super::{MM, MM_MIN};
 const RPM: f64 = 2.0 * std::f64::consts::PI / 60.0;
 
 /// Machine keys (SI ranges; `factor` converts the file's unit).

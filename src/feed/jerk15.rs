@@ -5,8 +5,8 @@
 //! the seed (t_v > t_a > t_j: J and A are reached; t_v ≤ t_a < t_j: neither is) and the critical
 //! distances s_cr1..s_cr4 fall out of choosing the peak acceleration below.
 
-use super::quintic::{largest_within, Composed, Shape};
-use super::{BlockRequest, FeedLaw, Kin, Limits};
+use super::compose::{self, RampLaw, Shape, TwoRamps};
+use super::{scurve7, BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
 /// One speed change with the 7 jerk phases (durations t_j, t_2, t_j, t_4, t_j, t_2, t_j).
@@ -156,11 +156,71 @@ pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
 }
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
-    largest_within(v_out.max(0.0), length.max(0.0), |v| ramp_distance(v, v_out, lim))
+    compose::max_speed(&Law::new(lim), length, v_out)
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
-    largest_within(v_in.max(0.0), length.max(0.0), |v| ramp_distance(v_in, v, lim))
+    compose::max_speed(&Law::new(lim), length, v_in)
+}
+
+/// The 15-phase ramp as a [`RampLaw`]. With the peak acceleration a: T = T_rise(A) + Δv/A when A is
+/// reached; T = 2(J/R + a/J) with a(J/R + a/J) = Δv when only J is; T = 4·(Δv/2R)^(1/3) otherwise.
+struct Law {
+    lim: Limits,
+    /// Rise time 2t_j + t_2 of the acceleration to A, and the Δv bounds of the three regimes.
+    rise_a: f64,
+    dv_a: f64,
+    dv_j: f64,
+    /// J/R and J²/R (0 without snap limit).
+    j_r: f64,
+    jj_r: f64,
+}
+
+impl Law {
+    fn new(lim: &Limits) -> Law {
+        let (a, j, r) = (lim.a_max, lim.j_max, snap(lim));
+        let (t_j, t_2, _) = rise(a, lim);
+        let rise_a = 2.0 * t_j + t_2;
+        Law {
+            lim: *lim,
+            rise_a,
+            dv_a: a * rise_a,
+            dv_j: 2.0 * j * j * j / (r * r),
+            j_r: j / r,
+            jj_r: j * j / r,
+        }
+    }
+}
+
+impl RampLaw for Law {
+    /// The duration of [`Ramp15::new`] without building the ramp, and its slope.
+    fn time(&self, m: f64) -> (f64, f64) {
+        let (a, j) = (self.lim.a_max, self.lim.j_max);
+        if m == 0.0 || !(a > 0.0 && j > 0.0) {
+            (0.0, 0.0)
+        } else if m >= self.dv_a {
+            (self.rise_a + m / a, 1.0 / a)
+        } else if m >= self.dv_j {
+            let a_peak = 2.0 * m / ((self.j_r * self.j_r + 4.0 * m / j).sqrt() + self.j_r);
+            (2.0 * (self.j_r + a_peak / j), 2.0 / (self.jj_r + 2.0 * a_peak))
+        } else {
+            let t = 4.0 * (m / (2.0 * snap(&self.lim))).cbrt();
+            (t, t / (3.0 * m))
+        }
+    }
+    fn valid(&self) -> bool {
+        let (a, j) = (self.lim.a_max, self.lim.j_max);
+        a.is_finite() && j.is_finite() && a > 0.0 && j > 0.0 && !self.lim.snap_max.is_nan()
+    }
+    /// Bracketed by scurve7's closed form: without the snap limit the ramps are never slower, so
+    /// its largest rise bounds this one from above.
+    fn max_rise(&self, length: f64, v: f64) -> f64 {
+        let hi = scurve7::max_rise(length, v, &self.lim).sqrt();
+        compose::max_rise_within(self, length, v, 0.0, hi)
+    }
+    fn rise_estimate(&self, length: f64, v: f64) -> f64 {
+        scurve7::max_rise(length, v, &self.lim)
+    }
 }
 
 /// Phases 1–7 (`up`), 8 (`t_cruise` at `v_peak`), 9–15 (`down`).
@@ -176,7 +236,7 @@ pub struct Jerk15 {
 
 pub fn plan(req: &BlockRequest) -> Jerk15 {
     let lim = req.limits;
-    let shape = Shape::solve(req, |v1, v2| ramp_distance(v1, v2, &lim));
+    let shape = Shape::solve(&Law::new(&lim), req);
     Jerk15 {
         v_in: shape.v_in,
         v_peak: shape.v_peak,
@@ -187,37 +247,26 @@ pub fn plan(req: &BlockRequest) -> Jerk15 {
     }
 }
 
-impl Jerk15 {
-    fn blocks(&self) -> Composed {
-        Composed {
-            v_in: self.v_in,
-            v_peak: self.v_peak,
-            v_end: self.v_end,
-            t_up: self.up.duration(),
-            t_cruise: self.t_cruise,
-            t_down: self.down.duration(),
-        }
+impl compose::Ramp for Ramp15 {
+    fn duration(&self) -> f64 {
+        Ramp15::duration(self)
+    }
+    fn at(&self, v1: f64, tau: f64) -> Kin {
+        Ramp15::at(self, v1, tau)
     }
 }
 
-impl FeedLaw for Jerk15 {
-    fn duration(&self) -> f64 {
-        self.blocks().duration()
-    }
-    fn length(&self) -> f64 {
-        self.blocks().length()
-    }
-    fn v_end(&self) -> f64 {
-        self.v_end
-    }
-    fn at(&self, t: f64) -> Kin {
-        self.blocks().at(
-            t,
-            |tau| self.up.at(self.v_in, tau),
-            |tau| self.down.at(self.v_peak, tau),
+impl TwoRamps for Jerk15 {
+    type Ramp = Ramp15;
+    fn parts(&self) -> ([f64; 3], &Ramp15, f64, &Ramp15) {
+        (
+            [self.v_in, self.v_peak, self.v_end],
+            &self.up,
+            self.t_cruise,
+            &self.down,
         )
     }
-    fn phases(&self) -> Vec<f64> {
+    fn ramp_phases(&self) -> Vec<f64> {
         let mut p = self.up.phases().to_vec();
         p.push(self.t_cruise);
         p.extend(self.down.phases());
@@ -228,8 +277,9 @@ impl FeedLaw for Jerk15 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feed::FeedLaw;
 
-    const MM: f64 = 1e-3;
+    use crate::config::MM;
 
     /// Seed 001 first example (t_v > t_a > t_j) and second (t_v ≤ t_a < t_j), in SI.
     fn case1() -> Limits {
@@ -363,6 +413,28 @@ mod tests {
             }
         }
         assert!((best - 0.16197).abs() < 1e-5 && best < 0.1639 - 1e-3, "{best}");
+    }
+
+    /// The law's T(Δv) is the duration of the ramp it stands for, and dT/dΔv its slope, in all three
+    /// regimes (triangular jerk, J reached, A reached) of both seed cases and without snap limit.
+    #[test]
+    fn ramp_law_time_and_slope() {
+        let no_snap = Limits {
+            snap_max: 0.0,
+            ..case1()
+        };
+        for lim in [case1(), case2(), no_snap] {
+            let law = Law::new(&lim);
+            for k in 1..400 {
+                let m = 1e-5 * 1.03f64.powi(k);
+                let (t, slope) = law.time(m);
+                let want = Ramp15::new(0.0, m, &lim).duration();
+                assert!((t - want).abs() <= 1e-14 * want, "{m}: {t} vs {want}");
+                let h = 1e-7 * m;
+                let fd = (law.time(m + h).0 - law.time(m - h).0) / (2.0 * h);
+                assert!((slope - fd).abs() <= 1e-5 * fd, "{m}: {slope} vs {fd}");
+            }
+        }
     }
 
     #[test]

@@ -4,14 +4,14 @@
 //! (constant-acceleration phase) or 5-period (none) by eq. 1; Fig. 2 then decides the type:
 //! ① S_a + S_b < S: cruise S_c = S − S_a − S_b at v_f (③–⑥ are its special cases);
 //! ② S_a + S_b > S: no cruise; the peak follows eq. 2–3 (both sides 5-period at exactly a_max with
-//!   lowered jerks J1, J2) when those jerks stay within J, else the largest peak by eq. 1 (bisection);
+//!   lowered jerks J1, J2) when those jerks stay within J, else the largest peak by eq. 1 (Newton);
 //! ④/⑤ with S_a > S (or S_b > S): only one ramp fits, the exit speed reached is reported.
 //!
 //! Phases: 3 for the ramp up (jerk, constant acceleration, jerk), the cruise, 3 for the ramp down.
 
+use super::compose::{self, RampLaw, Shape, TwoRamps};
 use super::jerk15::symmetric_ramp_at;
-use super::quintic::{largest_within, Composed, Shape};
-use super::{BlockRequest, FeedLaw, Kin, Limits};
+use super::{scurve7, BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
 /// One speed change: jerk ±`jerk` for t_j, constant acceleration for t_a, jerk ∓`jerk` for t_j.
@@ -81,11 +81,34 @@ pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
 }
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
-    largest_within(v_out.max(0.0), length.max(0.0), |v| ramp_distance(v, v_out, lim))
+    compose::max_speed(&Law(*lim), length, v_out)
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
-    largest_within(v_in.max(0.0), length.max(0.0), |v| ramp_distance(v_in, v, lim))
+    compose::max_speed(&Law(*lim), length, v_in)
+}
+
+/// Eq. 1 as a [`RampLaw`]: the ramp is exactly scurve7's, so its largest ramp in a length is
+/// scurve7's closed form (a cubic without the plateau, a quadratic with it).
+struct Law(Limits);
+
+impl RampLaw for Law {
+    fn time(&self, dv: f64) -> (f64, f64) {
+        let r = Ramp57::new(0.0, dv, &self.0);
+        let slope = if r.t_a > 0.0 {
+            1.0 / self.0.a_max
+        } else {
+            1.0 / (dv * self.0.j_max).sqrt()
+        };
+        (r.duration(), slope)
+    }
+    fn valid(&self) -> bool {
+        let (a, j) = (self.0.a_max, self.0.j_max);
+        a.is_finite() && j.is_finite() && a > 0.0 && j > 0.0
+    }
+    fn max_rise(&self, length: f64, v: f64) -> f64 {
+        scurve7::max_rise(length, v, &self.0)
+    }
 }
 
 /// Which branch of Fig. 2 planned the block.
@@ -95,7 +118,7 @@ pub enum Mixed57Type {
     Cruise,
     /// ② by eq. 2–3: no cruise, both ramps 5-period at a_max with J1, J2 ≤ J.
     NoCruiseEq3,
-    /// ② where eq. 3 would need J1 or J2 > J: largest peak by eq. 1 (bisection).
+    /// ② where eq. 3 would need J1 or J2 > J: largest peak by eq. 1 (bracketed Newton).
     NoCruiseBisection,
     /// ④/⑤ with S_a > S: the exit speed is not reachable, the one reached is reported.
     OneRamp,
@@ -114,7 +137,8 @@ pub struct Mixed57 {
 
 pub fn plan(req: &BlockRequest) -> Mixed57 {
     let lim = req.limits;
-    let dist = |v1: f64, v2: f64| ramp_distance(v1, v2, &lim);
+    let law = Law(lim);
+    let dist = |v1: f64, v2: f64| compose::distance(&law, v1, v2);
     let l = req.length.max(0.0);
     let (v_in, v_out) = (req.v_in.max(0.0), req.v_out.max(0.0));
     let v_f = req.v_feed.min(lim.v_max).max(v_in).max(v_out);
@@ -140,7 +164,7 @@ pub fn plan(req: &BlockRequest) -> Mixed57 {
             };
         }
     }
-    let shape = Shape::solve(req, dist);
+    let shape = Shape::solve(&law, req);
     let kind = if !feasible {
         Mixed57Type::OneRamp
     } else if shape.v_peak < v_f {
@@ -159,37 +183,26 @@ pub fn plan(req: &BlockRequest) -> Mixed57 {
     }
 }
 
-impl Mixed57 {
-    fn blocks(&self) -> Composed {
-        Composed {
-            v_in: self.v_in,
-            v_peak: self.v_peak,
-            v_end: self.v_end,
-            t_up: self.up.duration(),
-            t_cruise: self.t_cruise,
-            t_down: self.down.duration(),
-        }
+impl compose::Ramp for Ramp57 {
+    fn duration(&self) -> f64 {
+        Ramp57::duration(self)
+    }
+    fn at(&self, v1: f64, tau: f64) -> Kin {
+        Ramp57::at(self, v1, tau)
     }
 }
 
-impl FeedLaw for Mixed57 {
-    fn duration(&self) -> f64 {
-        self.blocks().duration()
-    }
-    fn length(&self) -> f64 {
-        self.blocks().length()
-    }
-    fn v_end(&self) -> f64 {
-        self.v_end
-    }
-    fn at(&self, t: f64) -> Kin {
-        self.blocks().at(
-            t,
-            |tau| self.up.at(self.v_in, tau),
-            |tau| self.down.at(self.v_peak, tau),
+impl TwoRamps for Mixed57 {
+    type Ramp = Ramp57;
+    fn parts(&self) -> ([f64; 3], &Ramp57, f64, &Ramp57) {
+        (
+            [self.v_in, self.v_peak, self.v_end],
+            &self.up,
+            self.t_cruise,
+            &self.down,
         )
     }
-    fn phases(&self) -> Vec<f64> {
+    fn ramp_phases(&self) -> Vec<f64> {
         vec![
             self.up.t_j,
             self.up.t_a,
@@ -205,8 +218,9 @@ impl FeedLaw for Mixed57 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feed::FeedLaw;
 
-    const MM: f64 = 1e-3;
+    use crate::config::MM;
 
     fn lim() -> Limits {
         // Seed 002 §III: v_f = 60 mm/s, a_max = 3000 mm/s², J = 200 m/s³.

@@ -11,10 +11,13 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod compose;
 pub mod jerk15;
 pub mod mixed57;
 pub mod quintic;
+pub mod roots;
 pub mod scurve7;
+pub mod tolerance;
 pub mod trapezoid;
 
 /// Kinematic state along the path at one instant: s (m), v (m/s), a (m/s²), j (m/s³).
@@ -135,16 +138,6 @@ impl Profile {
             ProfileKind::Jerk15 => Profile::Jerk15(jerk15::plan(req)),
             ProfileKind::Mixed57 => Profile::Mixed57(mixed57::plan(req)),
             ProfileKind::Trapezoid => Profile::Trapezoid(trapezoid::plan(req)),
-        }
-    }
-
-    pub fn kind(&self) -> ProfileKind {
-        match self {
-            Profile::Scurve7(_) => ProfileKind::Scurve7,
-            Profile::Quintic(_) => ProfileKind::Quintic,
-            Profile::Jerk15(_) => ProfileKind::Jerk15,
-            Profile::Mixed57(_) => ProfileKind::Mixed57,
-            Profile::Trapezoid(_) => ProfileKind::Trapezoid,
         }
     }
 }

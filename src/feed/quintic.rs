@@ -1,12 +1,11 @@
 //! Quintic feedrate law (seed 000, Chen/Yeh/Sun 2011): each speed change F_s → F_s + F_d follows
 //! F(t) = F_s + a3 t³ + a4 t⁴ + a5 t⁵ (eq. 2.14) with a = j = 0 at both ends (eq. 2.11–2.17), over the
-//! ramp time t_d of eq. 2.28. A block is ramp – cruise – ramp; the peak speed is lowered by bounded
-//! bisection when the block is too short.
-//!
-//! This file also holds the small bounded solvers and the ramp–cruise–ramp composition shared with
-//! `jerk15` and `mixed57` (every one of those laws has a ramp whose distance grows with the speed change).
+//! ramp time t_d of eq. 2.28. A block is ramp – cruise – ramp (`compose`); the largest ramp in a
+//! length is a cubic (t_d by the jerk) or a quadratic (t_d by the acceleration) in closed form.
 
-use super::{BlockRequest, FeedLaw, Kin, Limits};
+use super::compose::{self, Composed, RampCruiseRamp, RampLaw, Shape};
+use super::roots::{cubic_pos, quadratic_pos};
+use super::{BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
 /// Peak acceleration of a quintic ramp is 1.875·F_d/t_d (eq. 2.24; exactly 15/8, at t = t_d/2).
@@ -30,11 +29,44 @@ pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
 }
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
-    largest_within(v_out.max(0.0), length.max(0.0), |v| ramp_distance(v, v_out, lim))
+    compose::max_speed(&Law(*lim), length, v_out)
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
-    largest_within(v_in.max(0.0), length.max(0.0), |v| ramp_distance(v_in, v, lim))
+    compose::max_speed(&Law(*lim), length, v_in)
+}
+
+/// The quintic ramp as a [`RampLaw`]: T = max(1.875·Δv/A, sqrt(5.773·Δv/J)).
+struct Law(Limits);
+
+impl RampLaw for Law {
+    fn time(&self, dv: f64) -> (f64, f64) {
+        let t_a = ACC_FACTOR * dv / self.0.a_max;
+        let t_j = (JERK_FACTOR * dv / self.0.j_max).sqrt();
+        if dv == 0.0 {
+            (0.0, 0.0)
+        } else if t_a >= t_j {
+            (t_a, ACC_FACTOR / self.0.a_max)
+        } else {
+            (t_j, 0.5 * t_j / dv)
+        }
+    }
+    fn valid(&self) -> bool {
+        let (a, j) = (self.0.a_max, self.0.j_max);
+        a.is_finite() && j.is_finite() && a > 0.0 && j > 0.0
+    }
+    /// (2v + x)·T(x) = 2L: with T by the jerk, s = sqrt(x) solves s³ + 2v·s − 2L·sqrt(J/5.773) = 0;
+    /// with T by the acceleration, 1.875/A·x² + 3.75v/A·x − 2L = 0.
+    fn max_rise(&self, length: f64, v: f64) -> f64 {
+        let (a, j) = (self.0.a_max, self.0.j_max);
+        // T by the jerk up to x_c = 5.773·A²/(1.875²·J).
+        let x_c = JERK_FACTOR * a * a / (ACC_FACTOR * ACC_FACTOR * j);
+        let s = cubic_pos(2.0 * v, 2.0 * length * (j / JERK_FACTOR).sqrt());
+        if s * s <= x_c {
+            return s * s;
+        }
+        quadratic_pos(ACC_FACTOR / a, 2.0 * ACC_FACTOR * v / a, -2.0 * length)
+    }
 }
 
 /// Ramp up v_in → v_peak (t_up), cruise (t_cruise), ramp v_peak → v_end (t_down).
@@ -50,7 +82,7 @@ pub struct Quintic {
 
 pub fn plan(req: &BlockRequest) -> Quintic {
     let lim = req.limits;
-    let shape = Shape::solve(req, |v1, v2| ramp_distance(v1, v2, &lim));
+    let shape = Shape::solve(&Law(lim), req);
     Quintic {
         v_in: shape.v_in,
         v_peak: shape.v_peak,
@@ -83,8 +115,8 @@ fn ramp_at(v1: f64, v2: f64, t_d: f64, t: f64) -> Kin {
     }
 }
 
-impl Quintic {
-    fn blocks(&self) -> Composed {
+impl RampCruiseRamp for Quintic {
+    fn composed(&self) -> Composed {
         Composed {
             v_in: self.v_in,
             v_peak: self.v_peak,
@@ -94,177 +126,21 @@ impl Quintic {
             t_down: self.t_down,
         }
     }
-}
-
-impl FeedLaw for Quintic {
-    fn duration(&self) -> f64 {
-        self.blocks().duration()
+    fn up_at(&self, tau: f64) -> Kin {
+        ramp_at(self.v_in, self.v_peak, self.t_up, tau)
     }
-    fn length(&self) -> f64 {
-        self.blocks().length()
+    fn down_at(&self, tau: f64) -> Kin {
+        ramp_at(self.v_peak, self.v_end, self.t_down, tau)
     }
-    fn v_end(&self) -> f64 {
-        self.v_end
-    }
-    fn at(&self, t: f64) -> Kin {
-        self.blocks().at(
-            t,
-            |tau| ramp_at(self.v_in, self.v_peak, self.t_up, tau),
-            |tau| ramp_at(self.v_peak, self.v_end, self.t_down, tau),
-        )
-    }
-    fn phases(&self) -> Vec<f64> {
+    fn phase_list(&self) -> Vec<f64> {
         vec![self.t_up, self.t_cruise, self.t_down]
-    }
-}
-
-// ---- Bounded solvers and block composition shared by quintic, jerk15 and mixed57 ----
-
-/// A block as ramp (t_up, v_in → v_peak), cruise at v_peak (t_cruise), ramp (t_down, → v_end).
-/// Every ramp of these laws is point-symmetric, so it covers its mean speed times its duration.
-pub(super) struct Composed {
-    pub v_in: f64,
-    pub v_peak: f64,
-    pub v_end: f64,
-    pub t_up: f64,
-    pub t_cruise: f64,
-    pub t_down: f64,
-}
-
-impl Composed {
-    pub fn duration(&self) -> f64 {
-        self.t_up + self.t_cruise + self.t_down
-    }
-
-    pub fn length(&self) -> f64 {
-        0.5 * (self.v_in + self.v_peak) * self.t_up
-            + self.v_peak * self.t_cruise
-            + 0.5 * (self.v_peak + self.v_end) * self.t_down
-    }
-
-    /// State at t; `up(τ)` and `down(τ)` give a ramp's state τ after its own start (s from there).
-    pub fn at(&self, t: f64, up: impl Fn(f64) -> Kin, down: impl Fn(f64) -> Kin) -> Kin {
-        let total = self.duration();
-        let t = t.clamp(0.0, total);
-        let t_end = t >= total;
-        if t < self.t_up {
-            return up(t);
-        }
-        let s1 = 0.5 * (self.v_in + self.v_peak) * self.t_up;
-        let t = t - self.t_up;
-        if t < self.t_cruise {
-            return Kin {
-                s: s1 + self.v_peak * t,
-                v: self.v_peak,
-                a: 0.0,
-                j: 0.0,
-            };
-        }
-        // At the very end take the ramp's own duration, so that a = 0 exactly despite rounding of t.
-        let t_down = if t_end {
-            self.t_down
-        } else {
-            (t - self.t_cruise).min(self.t_down)
-        };
-        let k = down(t_down);
-        Kin {
-            s: s1 + self.v_peak * self.t_cruise + k.s,
-            ..k
-        }
-    }
-}
-
-/// Iterations of every bisection: the bracket reaches adjacent floats long before.
-pub(super) const BISECTIONS: usize = 110;
-
-/// Bisection between `good` (predicate holds) and `bad` (it does not); returns the last good point.
-/// Works whichever way round the two lie; fixed iteration count.
-pub(super) fn bisect(mut good: f64, mut bad: f64, ok: impl Fn(f64) -> bool) -> f64 {
-    for _ in 0..BISECTIONS {
-        let mid = 0.5 * (good + bad);
-        if mid == good || mid == bad {
-            break;
-        }
-        if ok(mid) {
-            good = mid;
-        } else {
-            bad = mid;
-        }
-    }
-    good
-}
-
-/// Largest v ≥ v0 with dist(v) ≤ length, for dist increasing in v and dist(v0) ≤ length.
-/// The bracket grows geometrically a bounded number of times, then bisection.
-pub(super) fn largest_within(v0: f64, length: f64, dist: impl Fn(f64) -> f64) -> f64 {
-    let mut good = v0;
-    let mut step = v0.max(1e-3);
-    for _ in 0..80 {
-        let hi = v0 + step;
-        let fits = dist(hi) <= length; // NaN counts as "does not fit"
-        if !fits {
-            return bisect(good, hi, |v| dist(v) <= length);
-        }
-        good = hi;
-        step *= 2.0;
-    }
-    good
-}
-
-/// Speeds of a ramp–cruise–ramp block and the distance left for the cruise at v_peak.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Shape {
-    pub v_in: f64,
-    pub v_peak: f64,
-    pub v_end: f64,
-    pub cruise: f64,
-}
-
-impl Shape {
-    /// `dist(v1, v2)` is the law's fastest ramp distance. If v_out cannot be reached the block is one
-    /// ramp towards it, to the closest speed whose ramp fits (the few ulps left are cruised).
-    /// Otherwise the peak is the feed (capped by v_max) or, when too long, the largest peak that fits.
-    pub fn solve(req: &BlockRequest, dist: impl Fn(f64, f64) -> f64) -> Shape {
-        let l = req.length.max(0.0);
-        let (v_in, v_out) = (req.v_in.max(0.0), req.v_out.max(0.0));
-        let reachable = dist(v_in, v_out) <= l; // NaN counts as unreachable
-        if !reachable {
-            let v_end = bisect(v_in, v_out, |v| dist(v_in, v) <= l);
-            let v_peak = v_in.max(v_end);
-            return Shape {
-                v_in,
-                v_peak,
-                v_end,
-                cruise: l - dist(v_in, v_end),
-            };
-        }
-        let v_cap = req.v_feed.min(req.limits.v_max).max(v_in).max(v_out);
-        let total = |v: f64| dist(v_in, v) + dist(v, v_out);
-        let v_peak = if total(v_cap) <= l {
-            v_cap
-        } else {
-            bisect(v_in.max(v_out), v_cap, |v| total(v) <= l)
-        };
-        Shape {
-            v_in,
-            v_peak,
-            v_end: v_out,
-            cruise: l - total(v_peak),
-        }
-    }
-
-    pub fn cruise_time(&self) -> f64 {
-        if self.v_peak > 0.0 {
-            self.cruise.max(0.0) / self.v_peak
-        } else {
-            0.0
-        }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::feed::FeedLaw;
 
     #[test]
     fn constants_from_sampled_curve() {

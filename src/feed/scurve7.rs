@@ -13,13 +13,10 @@
 //! increasing function Newton lands right of the root after one step and then decreases
 //! monotonically to it). Rest to rest this is the time-optimal profile.
 
+use super::roots::{bisect, cubic_depressed, cubic_pos, fit_down, quadratic_pos};
+use super::tolerance::{PEAK_NEWTON_STEPS, PEAK_RESIDUAL, PEAK_STEP, ROOT_SLACK};
 use super::{BlockRequest, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
-
-/// Newton steps for the peak speed (quadratic convergence from a Cardano start: 3–6 used).
-const NEWTON_STEPS: usize = 40;
-/// Bisection steps for the rare requests with V_F below an end speed, or an unreachable slow-down.
-const BISECTION_STEPS: usize = 64;
 
 /// Phase durations `tau`, the jerk of the two ramps and the distance and speed at each phase
 /// start, so that `at(t)` is one cubic (eq. 1–7). Kept to 26 numbers (the `Profile` enum holds it
@@ -95,7 +92,7 @@ fn valid_limits(lim: &Limits) -> bool {
 
 /// Largest speed change x ≥ 0 from base speed v (up or down to v) with d(v, v + x) ≤ length.
 /// d is increasing in x, so this is the one root of d(v, v + x) = length.
-fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
+pub(super) fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
     if !valid_limits(lim) || length.is_nan() || length <= 0.0 {
         return 0.0;
     }
@@ -103,7 +100,7 @@ fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
     let v = v.max(0.0);
     let ac = a * a / j;
     // Without plateau: (2v + x)·sqrt(x/J) = L, with s = sqrt(x): s³ + 2v·s − L·sqrt(J) = 0 (Cardano).
-    let s = cubic_root_pos(2.0 * v, length * j.sqrt());
+    let s = cubic_pos(2.0 * v, length * j.sqrt());
     let x = s * s;
     if x <= ac {
         return x;
@@ -111,41 +108,7 @@ fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
     // With plateau: (2v + x)(x/A + A/J) = 2L → x²/A + x(A/J + 2v/A) + 2vA/J − 2L = 0.
     let b = a / j + 2.0 * v / a;
     let c = 2.0 * v * a / j - 2.0 * length;
-    positive_quadratic_root(1.0 / a, b, c)
-}
-
-/// The real root of s³ + p·s − q = 0 with p ≥ 0, q ≥ 0 (one real root, ≥ 0), polished by
-/// two Newton steps against the cancellation in Cardano's formula when p³ ≫ q².
-fn cubic_root_pos(p: f64, q: f64) -> f64 {
-    if q <= 0.0 {
-        return 0.0;
-    }
-    let disc = (0.25 * q * q + p * p * p / 27.0).sqrt();
-    let w = (0.5 * q + disc).cbrt();
-    let mut s = if w > 0.0 { w - p / (3.0 * w) } else { 0.0 };
-    if s.is_nan() || s <= 0.0 || s * p > 2.0 * q {
-        // Cancellation: for p³ ≫ q² the root is ≈ q/p.
-        s = q / p.max(f64::MIN_POSITIVE);
-    }
-    for _ in 0..2 {
-        let f = s * s * s + p * s - q;
-        let df = 3.0 * s * s + p;
-        if df > 0.0 {
-            s -= f / df;
-        }
-    }
-    s.max(0.0)
-}
-
-/// Positive root of a·x² + b·x + c = 0 (a > 0, b ≥ 0, c ≤ 0), without cancellation.
-fn positive_quadratic_root(a: f64, b: f64, c: f64) -> f64 {
-    let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
-    let r = -2.0 * c / (b + disc);
-    if r.is_finite() {
-        r.max(0.0)
-    } else {
-        0.0
-    }
+    quadratic_pos(1.0 / a, b, c)
 }
 
 /// v + `max_rise` with the rounding of the closed form removed: step the speed down (by ulps of
@@ -154,7 +117,7 @@ fn positive_quadratic_root(a: f64, b: f64, c: f64) -> f64 {
 fn max_speed_fitting(length: f64, v: f64, lim: &Limits) -> f64 {
     let v = v.max(0.0);
     let w = v + max_rise(length, v, lim);
-    fit_down(w, v, length, |w| ramp_distance(v, w, lim))
+    fit_down(w, v, length, |w| ramp_distance(v, w, lim)).0
 }
 
 /// Largest entry speed v_in ≥ v_out from which the S-curve slows to v_out within `length`.
@@ -210,14 +173,14 @@ fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) ->
     let u_plateau = ac.sqrt();
     if u_plateau < u_max && peak_distance(u_plateau, v_in, v_out, a, j).0 <= length {
         let c = -(v_in * v_in + v_out * v_out) / (2.0 * a) + (v_in + v_out) * a / (2.0 * j) - length;
-        let vc = positive_quadratic_root(1.0 / a, a / j, c);
+        let vc = quadratic_pos(1.0 / a, a / j, c);
         return vc.clamp(v_hi, v_cap);
     }
     // Start: Cardano for both ramps triangular from v_hi (exact when v_in = v_out, e.g. rest to
     // rest: 2(2v + u²)·u/sqrt(J) = L), shifted by the ramp v_lo → v_hi.
     let d0 = peak_distance(0.0, v_in, v_out, a, j).0;
-    let mut u = cubic_root_pos(2.0 * v_hi, 0.5 * (length - d0).max(0.0) * j.sqrt()).min(u_max);
-    for _ in 0..NEWTON_STEPS {
+    let mut u = cubic_pos(2.0 * v_hi, 0.5 * (length - d0).max(0.0) * j.sqrt()).min(u_max);
+    for _ in 0..PEAK_NEWTON_STEPS {
         let (d, g) = peak_distance(u, v_in, v_out, a, j);
         if g.is_nan() || g <= 0.0 {
             break;
@@ -227,41 +190,67 @@ fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) ->
         u = next;
         // Quadratic convergence: a residual below 1e-8 leaves ~1e-16 after this step (the rest is
         // taken by fit_down or the cruise).
-        if step <= 1e-15 * u.max(1e-300) || (d - length).abs() <= 1e-8 * length {
+        if step <= PEAK_STEP * u.max(f64::MIN_POSITIVE) || (d - length).abs() <= PEAK_RESIDUAL * length {
             break;
         }
     }
     (v_hi + u * u).clamp(v_hi, v_cap)
 }
 
-/// Step `w` down towards `floor` (a few ulps at first, doubling) until f(w) ≤ target; f(floor) ≤
-/// target is known, so at most a bounded number of steps.
-fn fit_down(mut w: f64, floor: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let mut step = w * f64::EPSILON;
-    for _ in 0..64 {
-        if f(w) <= target || w <= floor {
-            break;
+/// Exit speed of a slow-down v_in → v_out that does not fit in `length` (cruise at v_in first).
+/// D(v_in, x) is unimodal in x (see plan/mod.rs): the largest exit below v_out if a stop fits, else
+/// the lowest one above v_out. In the speed drop y = v_in − x, D = L is one of the roots of
+/// [`drop_roots`] (exactly one lies in the interval searched); bisection only if rounding loses it.
+fn slow_down_exit(length: f64, v_in: f64, v_out: f64, lim: &Limits) -> f64 {
+    let d = |x: f64| ramp_distance(v_in, x, lim);
+    let g = |y: f64| d(v_in - y);
+    let roots = drop_roots(length, v_in, lim.a_max, lim.j_max);
+    let within = |lo: f64, hi: f64| roots.into_iter().filter(move |y| *y >= lo && *y <= hi);
+    if d(0.0) <= length {
+        // Stop fits: the crossing on the rising side of D in x, i.e. the largest drop root.
+        match within(v_in - v_out, v_in).reduce(f64::max) {
+            Some(y) => fit_down((v_in - y).min(v_out), 0.0, length, d).0,
+            None => bisect(0.0, v_out, |x| d(x) <= length),
         }
-        w = (w - step).max(floor);
-        step *= 2.0;
+    } else {
+        // d(v_in) = 0 ≤ L < d(v_out): the smallest speed drop whose ramp reaches L.
+        let y = match within(0.0, v_in - v_out).reduce(f64::min) {
+            Some(y) => fit_down(y, 0.0, length, g).0,
+            None => bisect(0.0, v_in - v_out, |y| g(y) <= length),
+        };
+        v_in - y
     }
-    w.max(floor)
 }
 
-/// Largest x in [lo, hi] with f(x) ≤ target by bisection, given f(lo) ≤ target < f(hi) (bounded).
-fn bisect(mut lo: f64, mut hi: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
-    for _ in 0..BISECTION_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if f(mid) <= target {
-            lo = mid;
-        } else {
-            hi = mid;
+/// Speed drops y ∈ [0, v] with d(v, v − y) = length (NaN where absent): without plateau
+/// (y ≤ A²/J), (2v − y)·sqrt(y/J) = L, a depressed cubic s³ − 2v·s + L·sqrt(J) = 0 in s = sqrt(y)
+/// (three real roots: trigonometric form); with plateau, (2v − y)(y/A + A/J) = 2L, the quadratic
+/// y²/A + (A/J − 2v/A)·y + 2L − 2vA/J = 0.
+fn drop_roots(length: f64, v: f64, a: f64, j: f64) -> [f64; 5] {
+    let ac = a * a / j;
+    let mut out = [f64::NAN; 5];
+    for (k, s) in cubic_depressed(-2.0 * v, length * j.sqrt())
+        .into_iter()
+        .enumerate()
+    {
+        // (Roots within rounding of a regime's end are kept: both forms agree there.)
+        if s >= 0.0 && s * s <= ac.min(v) * (1.0 + ROOT_SLACK) {
+            out[k] = (s * s).min(v);
         }
     }
-    lo
+    let (qa, qb, qc) = (1.0 / a, a / j - 2.0 * v / a, 2.0 * length - 2.0 * v * a / j);
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc >= 0.0 {
+        let w = disc.sqrt();
+        // Both roots without cancellation: the larger-magnitude one first, then c/(a·y).
+        let big = -0.5 * (qb + qb.signum() * w) / qa;
+        for (k, y) in [big, qc / (qa * big)].into_iter().enumerate() {
+            if y > ac && y <= v * (1.0 + ROOT_SLACK) {
+                out[3 + k] = y.min(v);
+            }
+        }
+    }
+    out
 }
 
 /// The block's profile: V_F if the length allows, the highest peak V_F' otherwise, and the
@@ -286,16 +275,7 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
             let v_end = max_exit(length, v_in, lim).min(v_out);
             return Scurve7::build(v_in, v_end, v_end, length, a, j);
         }
-        // Slowing down: D(v_in, x) is unimodal in x (see plan/mod.rs), so take the largest exit
-        // below v_out if a stop fits, else the lowest one above v_out; cruise at v_in first.
-        let d = |x: f64| ramp_distance(v_in, x, lim);
-        let v_end = if d(0.0) <= length {
-            bisect(0.0, v_out, length, d)
-        } else {
-            // d(v_in) = 0 ≤ L < d(v_out): largest speed drop that fits, searched downwards from v_in.
-            let drop = bisect(0.0, v_in - v_out, length, |dv| d(v_in - dv));
-            v_in - drop
-        };
+        let v_end = slow_down_exit(length, v_in, v_out, lim);
         return Scurve7::build(v_in, v_in, v_end, length, a, j);
     }
     let v_hi = v_in.max(v_out);
@@ -308,7 +288,7 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
             // V_F' (seed cases 3–6), then made to fit with the speed as stored: v_c = v_hi + u²
             // rounds, and a short ramp's distance is sensitive to it.
             let v_c = solve_peak(length, v_in, v_out, v_cap, a, j);
-            fit_down(v_c, v_hi, length, total)
+            fit_down(v_c, v_hi, length, total).0
         }
     } else {
         // V_F below an end speed (the look-ahead never asks this): cruise at V_F if the length
@@ -318,7 +298,7 @@ pub fn plan(req: &BlockRequest) -> Scurve7 {
         if total(v_feed) <= length {
             v_feed
         } else {
-            let excess = bisect(0.0, v_hi - v_feed, length, |dv| total(v_hi - dv));
+            let excess = bisect(0.0, v_hi - v_feed, |dv| total(v_hi - dv) <= length);
             v_hi - excess
         }
     };
@@ -406,15 +386,6 @@ impl Scurve7 {
         let a2 = self.ramp_jerk[1] * self.tau[4];
         [0.0, a1, a1, 0.0, 0.0, a2, a2]
     }
-
-    /// Start time of each phase (s).
-    pub fn t_start(&self) -> [f64; 7] {
-        let mut t = [0.0; 7];
-        for k in 1..7 {
-            t[k] = t[k - 1] + self.tau[k - 1];
-        }
-        t
-    }
 }
 
 /// Change of (s, v, a) over dt from speed v, acceleration a, constant jerk (eq. 1–7).
@@ -463,5 +434,63 @@ impl FeedLaw for Scurve7 {
     }
     fn phases(&self) -> Vec<f64> {
         self.tau.to_vec()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed-form slow-down exit equals the bounded bisection it replaced, in both branches
+    /// (a stop fits / does not) and both ramp regimes (with and without plateau).
+    #[test]
+    fn slow_down_exit_matches_bisection() {
+        let lim = Limits {
+            v_max: 1.0,
+            a_max: 2.0,
+            j_max: 60.0,
+            snap_max: 0.0,
+        };
+        let mut checked = [0; 2];
+        for i in 1..=40 {
+            for k in 0..40 {
+                let v_in = 0.6 * i as f64 / 40.0;
+                let v_out = v_in * k as f64 / 40.0;
+                // Absolute lengths, and lengths just above a stop's (where D(v_in, x) rises in x).
+                let stop = ramp_distance(v_in, 0.0, &lim);
+                let rel = [1.0, 1.01, 1.05, 1.1, 1.2].map(|f| f * stop);
+                for length in [1e-6, 1e-4, 1e-3, 5e-3, 2e-2, 6e-2].into_iter().chain(rel) {
+                    if ramp_distance(v_in, v_out, &lim) <= length {
+                        continue;
+                    }
+                    let d = |x: f64| ramp_distance(v_in, x, &lim);
+                    let stop_fits = d(0.0) <= length;
+                    let want = if stop_fits {
+                        bisect(0.0, v_out, |x| d(x) <= length)
+                    } else {
+                        v_in - bisect(0.0, v_in - v_out, |y| d(v_in - y) <= length)
+                    };
+                    // The closed form found a root (no fall-back to bisection).
+                    let (lo, hi) = if stop_fits {
+                        (v_in - v_out, v_in)
+                    } else {
+                        (0.0, v_in - v_out)
+                    };
+                    let roots = drop_roots(length, v_in, lim.a_max, lim.j_max);
+                    assert!(
+                        roots.iter().any(|y| *y >= lo && *y <= hi),
+                        "{v_in} {v_out} {length}"
+                    );
+                    let got = slow_down_exit(length, v_in, v_out, &lim);
+                    assert!(d(got) <= length, "{v_in} {v_out} {length}");
+                    assert!(
+                        (got - want).abs() <= 1e-12 * v_in,
+                        "{v_in} {v_out} {length}: {got} vs {want}"
+                    );
+                    checked[stop_fits as usize] += 1;
+                }
+            }
+        }
+        assert!(checked[0] > 300 && checked[1] > 300, "{checked:?}");
     }
 }

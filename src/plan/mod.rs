@@ -88,10 +88,6 @@ impl Planner {
         blocks
     }
 
-    pub fn kind(&self) -> ProfileKind {
-        self.kind
-    }
-
     /// Scale the feed of segments pushed from now on (0 < scale ≤ 2; capped by each segment's
     /// limits).
     pub fn set_feed_scale(&mut self, scale: f64) {

@@ -5,6 +5,7 @@
 //! step; the nonlinear parts (torque saturation, Coulomb friction) are held per sub-step.
 
 use super::{AxisState, ServoParams};
+use crate::tolerance::{PERIOD_SLACK, SAME_STEP};
 use serde::{Deserialize, Serialize};
 
 /// Plant states: motor angle θ (rad), motor speed ω (rad/s), table position x (m),
@@ -197,10 +198,6 @@ impl ServoAxis {
         }
     }
 
-    pub fn params(&self) -> &ServoParams {
-        &self.params
-    }
-
     fn lead_radius(&self) -> f64 {
         self.params.screw_lead / (2.0 * std::f64::consts::PI)
     }
@@ -269,13 +266,13 @@ impl ServoAxis {
             }
             let room = period - self.phase;
             // Sub-steps that end within 1e-9 of a period boundary complete it (rounding of dt).
-            let (h, completes) = if left >= room - 1e-9 * period {
+            let (h, completes) = if left >= room - PERIOD_SLACK * period {
                 (room.min(left), true)
             } else {
                 (left, false)
             };
             let u = [self.torque_ref, load_force - self.friction];
-            let step = if (h - period).abs() <= 1e-12 * period {
+            let step = if (h - period).abs() <= SAME_STEP * period {
                 *self.full.get_or_insert_with(|| Step::new(&self.params, period))
             } else {
                 match self.partial {
@@ -290,7 +287,7 @@ impl ServoAxis {
             self.x = step.apply(&self.x, u);
             left -= h;
             self.phase = if completes { 0.0 } else { self.phase + h };
-            if completes && left < 1e-9 * period {
+            if completes && left < PERIOD_SLACK * period {
                 break;
             }
         }

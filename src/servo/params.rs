@@ -27,7 +27,8 @@ pub struct ServoParams {
     /// Rated and peak motor torque (N·m); the torque command saturates at the peak.
     pub rated_torque: f64,
     pub peak_torque: f64,
-    /// Maximum motor speed (rad/s), for the check of the machine's axis velocity.
+    /// Maximum motor speed (rad/s): the drive's rating, declared for the machine file and the FMU;
+    /// the model does not limit by it (the axis velocity limits bound the command).
     pub max_speed: f64,
     /// Encoder resolution (counts per motor revolution); 0 = ideal.
     pub encoder_counts: f64,

@@ -188,7 +188,6 @@ pub struct ModelInfo {
     pub variables: Vec<VariableInfo>,
     pub enumerations: Vec<EnumerationType>,
     pub units: Vec<UnitDefinition>,
-    pub log_categories: Vec<(String, String)>,
     /// DefaultExperiment: start, stop, tolerance, step size.
     pub default_experiment: (f64, f64, f64, f64),
 }
@@ -214,7 +213,6 @@ impl ModelInfo {
             variables,
             enumerations: Vec::new(),
             units,
-            log_categories: Vec::new(),
             default_experiment: (0.0, 1.0, 1e-6, 1e-3),
         }
     }

@@ -1,6 +1,9 @@
 //! `cnc-motion` command line: `profile` (one block's feed law), `run` (a whole program), `package`
 //! (write the FMU). Inputs and outputs in mm and seconds; the library works in SI.
 
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
 use clap::{Parser, Subcommand};
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use std::process::ExitCode;

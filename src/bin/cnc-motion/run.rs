@@ -159,7 +159,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         }
         n += 1;
         if let Some(bar) = &bar {
-            if n.is_multiple_of(1000) {
+            if n % 1000 == 0 {
                 bar.set_position(tick.line as u64);
                 bar.set_message(format!("t = {:.3} s", tick.t));
             }

@@ -1,0 +1,13 @@
+//! Named tolerances outside the path and plan stages (those keep their own for now). The feed laws'
+//! solver bounds and residuals are in [`crate::feed::tolerance`].
+
+pub use crate::feed::tolerance as feed;
+
+/// Fraction of a period within which two times count as the same instant (rounding of summed
+/// step sizes): a tick that close to the end of a step belongs to it, a sub-step that close to a
+/// period boundary completes it, a remainder that small is not a step.
+pub const PERIOD_SLACK: f64 = 1e-9;
+/// Relative difference below which a step size counts as a full period (the cached step is used).
+pub const SAME_STEP: f64 = 1e-12;
+/// Relative margin by which a speed counts as above a target (re-plan of override and hold).
+pub const SPEED_MARGIN: f64 = 1e-12;
