@@ -66,8 +66,7 @@ impl Engine {
     ) -> Result<Engine, ProgramError> {
         let program = program.into();
         let start = [0.0; 3];
-        let reader =
-            Reader::new(program.clone(), file, start).with_arc_tolerance(machine.arc_radius_tolerance);
+        let reader = Reader::new(program.clone(), file, start).with_machine(machine);
         crate::gcode::validate_with(reader.clone())?;
         let interp = Interpolator::new(start);
         let tick = interp.sample(0.0, false);

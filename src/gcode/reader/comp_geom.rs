@@ -1,0 +1,164 @@
+//! Plane geometry of cutter compensation: offset elements (lines and arcs in the active plane)
+//! and their intersections. Points are (a, b) in the plane's axes (`plane_axes`).
+
+use crate::gcode::{Block, Motion};
+
+pub type P2 = [f64; 2];
+
+pub fn sub(p: P2, q: P2) -> P2 {
+    [p[0] - q[0], p[1] - q[1]]
+}
+pub fn add(p: P2, q: P2, s: f64) -> P2 {
+    [p[0] + s * q[0], p[1] + s * q[1]]
+}
+pub fn dot(p: P2, q: P2) -> f64 {
+    p[0] * q[0] + p[1] * q[1]
+}
+pub fn cross(p: P2, q: P2) -> f64 {
+    p[0] * q[1] - p[1] * q[0]
+}
+pub fn norm(p: P2) -> f64 {
+    p[0].hypot(p[1])
+}
+pub fn dist(p: P2, q: P2) -> f64 {
+    norm(sub(p, q))
+}
+/// Left normal of a unit tangent.
+pub fn left(t: P2) -> P2 {
+    [-t[1], t[0]]
+}
+
+/// A programmed element in the plane: a line or an arc (centre, radius, clockwise).
+#[derive(Clone, Copy, Debug)]
+pub enum Elem {
+    Line {
+        start: P2,
+        end: P2,
+    },
+    Arc {
+        start: P2,
+        end: P2,
+        center: P2,
+        radius: f64,
+        cw: bool,
+    },
+}
+
+impl Elem {
+    /// The element of a motion block in the plane of axes (a, b); None if it does not move there.
+    pub fn of(block: &Block, a: usize, b: usize) -> Option<Elem> {
+        let s = [block.from[a], block.from[b]];
+        match block.motion {
+            Motion::Rapid { to } | Motion::Linear { to } => {
+                let e = [to[a], to[b]];
+                (dist(s, e) > 1e-9).then_some(Elem::Line { start: s, end: e })
+            }
+            Motion::Arc {
+                to,
+                center,
+                clockwise,
+                ..
+            } => {
+                let c = [center[a], center[b]];
+                Some(Elem::Arc {
+                    start: s,
+                    end: [to[a], to[b]],
+                    center: c,
+                    radius: dist(s, c),
+                    cw: clockwise,
+                })
+            }
+            _ => None,
+        }
+    }
+
+    pub fn start(&self) -> P2 {
+        match *self {
+            Elem::Line { start, .. } | Elem::Arc { start, .. } => start,
+        }
+    }
+
+    pub fn end(&self) -> P2 {
+        match *self {
+            Elem::Line { end, .. } | Elem::Arc { end, .. } => end,
+        }
+    }
+
+    /// Unit tangent at point `p` of the element (direction of travel).
+    pub fn tangent(&self, p: P2) -> P2 {
+        match *self {
+            Elem::Line { start, end } => {
+                let d = sub(end, start);
+                let l = norm(d);
+                [d[0] / l, d[1] / l]
+            }
+            Elem::Arc { center, cw, .. } => {
+                let r = sub(p, center);
+                let l = norm(r);
+                let t = [-r[1] / l, r[0] / l];
+                if cw {
+                    [-t[0], -t[1]]
+                } else {
+                    t
+                }
+            }
+        }
+    }
+
+    /// Radius of the offset arc, `side` +1 (G41, tool left) or −1 (G42); None for a line.
+    pub fn offset_radius(&self, side: f64, r: f64) -> Option<f64> {
+        match *self {
+            Elem::Line { .. } => None,
+            Elem::Arc { radius, cw, .. } => Some(radius + side * r * if cw { 1.0 } else { -1.0 }),
+        }
+    }
+
+    /// The offset of point `p` (start or end) of the element.
+    pub fn offset_point(&self, p: P2, side: f64, r: f64) -> P2 {
+        add(p, left(self.tangent(p)), side * r)
+    }
+}
+
+/// Intersections of two offset elements (line through `p` along `t`, or circle `c`, `radius`).
+pub enum Curve {
+    Line(P2, P2),
+    Circle(P2, f64),
+}
+
+/// The intersection of two offset curves nearest to `near`, if any.
+pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
+    let points: Vec<P2> = match (c1, c2) {
+        (Curve::Line(p, t), Curve::Line(q, u)) => {
+            let den = cross(*t, *u);
+            if den.abs() < 1e-12 {
+                return None;
+            }
+            let s = cross(sub(*q, *p), *u) / den;
+            vec![add(*p, *t, s)]
+        }
+        (Curve::Line(p, t), Curve::Circle(c, r)) | (Curve::Circle(c, r), Curve::Line(p, t)) => {
+            let f = sub(*p, *c);
+            let b = dot(f, *t);
+            let disc = b * b - (dot(f, f) - r * r);
+            if disc < -1e-12 {
+                return None;
+            }
+            let h = disc.max(0.0).sqrt();
+            vec![add(*p, *t, -b - h), add(*p, *t, -b + h)]
+        }
+        (Curve::Circle(c1, r1), Curve::Circle(c2, r2)) => {
+            let d = dist(*c1, *c2);
+            if d < 1e-12 || d > r1 + r2 + 1e-9 || d < (r1 - r2).abs() - 1e-9 {
+                return None;
+            }
+            let x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
+            let h = (r1 * r1 - x * x).max(0.0).sqrt();
+            let u = [(c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d];
+            let m = add(*c1, u, x);
+            vec![add(m, left(u), h), add(m, left(u), -h)]
+        }
+    };
+    points
+        .into_iter()
+        .min_by(|p, q| dist(*p, near).total_cmp(&dist(*q, near)))
+}

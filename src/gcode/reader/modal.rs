@@ -1,0 +1,162 @@
+//! The G and M words of a line: modal settings applied at once, motion / dwell / stop and the
+//! non-modal codes (G10, G28, G30, G53, G92) returned for `execute`.
+
+use super::{fmt_code, LineCodes, Reader};
+use crate::config::CutterCorner;
+use crate::error::ProgramError;
+use crate::gcode::check;
+use crate::gcode::words::Word;
+use crate::gcode::{PathMode, Plane, StopKind};
+
+impl Reader {
+    /// G and M words: modal settings applied at once, motion / dwell / stop returned.
+    pub(super) fn modal_words(&mut self, line: u32, words: &[Word]) -> Result<LineCodes, ProgramError> {
+        let mut codes = LineCodes::default();
+        // Modal groups seen on this line, to refuse two words of one group.
+        let mut groups: [Option<u32>; 12] = [None; 12];
+        let mut group = |g: usize, col: u32, this: &Reader| -> Result<(), ProgramError> {
+            if groups[g].is_some() {
+                return Err(this.error(line, col, "two words of the same modal group on one line"));
+            }
+            groups[g] = Some(col);
+            Ok(())
+        };
+        let (mut tolerance, mut q) = (None, None);
+        for w in words {
+            if w.letter == b'P' {
+                tolerance = Some(*w);
+            }
+            if w.letter == b'Q' {
+                q = Some(*w);
+            }
+        }
+        for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
+            // Codes with one decimal (G90.1); compare in tenths.
+            let code = (w.value * 10.0).round() as i64;
+            if ((w.value * 10.0) - code as f64).abs() > 1e-6 {
+                return Err(self.error(
+                    line,
+                    w.col,
+                    format!("unsupported {}{}", w.letter as char, w.value),
+                ));
+            }
+            let col = w.col;
+            if w.letter == b'M' {
+                match code {
+                    10 if !self.nc.optional_stop => {}
+                    0 | 10 => {
+                        group(7, col, self)?;
+                        let kind = if code == 0 {
+                            StopKind::Pause
+                        } else {
+                            StopKind::OptionalPause
+                        };
+                        codes.stop = Some((kind, col));
+                    }
+                    20 | 300 => {
+                        group(7, col, self)?;
+                        codes.stop = Some((StopKind::End, col));
+                    }
+                    60 => codes.tool_change = true,
+                    // Spindle, coolant, override switches: no motion.
+                    30 | 40 | 50 | 70 | 80 | 90 | 480 | 490 => {}
+                    _ => return Err(self.error(line, col, format!("unsupported M{}", fmt_code(code)))),
+                }
+                continue;
+            }
+            match code {
+                0 | 10 | 20 | 30 => {
+                    group(0, col, self)?;
+                    codes.motion = Some(((code / 10) as u8, col));
+                }
+                40 => {
+                    group(0, col, self)?;
+                    codes.dwell = Some(col);
+                }
+                170 | 180 | 190 => {
+                    group(1, col, self)?;
+                    self.plane = match code {
+                        170 => Plane::XY,
+                        180 => Plane::XZ,
+                        _ => Plane::YZ,
+                    };
+                }
+                200 | 210 => {
+                    group(2, col, self)?;
+                    self.unit = if code == 200 { 25.4e-3 } else { 1e-3 };
+                }
+                900 | 910 => {
+                    group(3, col, self)?;
+                    self.absolute = code == 900;
+                }
+                901 | 911 => {
+                    group(4, col, self)?;
+                    self.arc_absolute = code == 901;
+                }
+                610 | 611 => {
+                    group(5, col, self)?;
+                    self.path_mode = PathMode::ExactStop;
+                }
+                640 => {
+                    group(5, col, self)?;
+                    let metres = |w: Option<Word>| {
+                        w.map(|w| {
+                            check::blend_tolerance(w.letter, w.value, self.unit)
+                                .map_err(|m| self.error(line, w.col, m))
+                        })
+                        .transpose()
+                    };
+                    self.path_mode = PathMode::Blend {
+                        tolerance: metres(tolerance)?,
+                        q: metres(q)?,
+                    };
+                }
+                400 | 410 | 411 | 420 | 421 => {
+                    group(6, col, self)?;
+                    codes.comp = Some((code, col));
+                }
+                430 | 431 | 490 => {
+                    group(8, col, self)?;
+                    codes.tlo = Some((code, col));
+                }
+                540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => {
+                    group(9, col, self)?;
+                    self.work = match code {
+                        591..=593 => (code - 585) as usize,
+                        _ => ((code - 540) / 10) as usize,
+                    };
+                }
+                100 | 280 | 281 | 300 | 301 | 530 | 920..=923 => {
+                    group(10, col, self)?;
+                    codes.nonmodal = Some((code, col));
+                }
+                450 | 451 => {
+                    group(11, col, self)?;
+                    self.corner = if code == 450 {
+                        CutterCorner::Arc
+                    } else {
+                        CutterCorner::Extension
+                    };
+                }
+                // Accepted, no effect on motion: cancel cycles, feed per minute, spindle modes,
+                // canned-cycle return levels.
+                800 | 940 | 960 | 970 | 980 | 990 => {}
+                _ => {
+                    let what = match code {
+                        432 => " (tool length offset from a second tool)",
+                        330 | 331 | 760 => " (spindle-synchronised motion)",
+                        50..=53 => " (splines)",
+                        380..=389 => " (probing)",
+                        730 | 810..=890 => " (canned cycles)",
+                        930 => " (inverse-time feed)",
+                        950 => " (feed per revolution)",
+                        70 | 80 => " (lathe diameter mode)",
+                        _ => "",
+                    };
+                    return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
+                }
+            }
+        }
+        Ok(codes)
+    }
+}
