@@ -118,7 +118,7 @@ fn refusals_name_the_place() {
         ),
         (
             "G1 F100\nG33 Z-1 K1\n",
-            "t.ngc:2:1: unsupported G33 (spindle-synchronised motion)",
+            "t.ngc:2:1: unsupported G33 (spindle-synchronised motion: this model has no spindle position to follow)",
         ),
         (
             "G10 L5 P1 X0\n",

@@ -144,13 +144,15 @@ impl Reader {
                 _ => {
                     let what = match code {
                         432 => " (tool length offset from a second tool)",
-                        330 | 331 | 760 => " (spindle-synchronised motion)",
+                        330 | 331 | 760 => {
+                            " (spindle-synchronised motion: this model has no spindle position to follow)"
+                        }
                         50..=53 => " (splines)",
                         380..=389 => " (probing)",
                         730 | 810..=890 => " (canned cycles)",
                         930 => " (inverse-time feed)",
                         950 => " (feed per revolution)",
-                        70 | 80 => " (lathe diameter mode)",
+                        70 | 80 => " (lathe diameter/radius mode: this controller drives a 3-axis mill)",
                         _ => "",
                     };
                     return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
