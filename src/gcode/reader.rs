@@ -296,7 +296,8 @@ impl Reader {
         }
         let non_modal = self.non_modal(line, &codes, &extra, p, r, &axes)?;
         if non_modal == offsets::NonModal::Consumed {
-            axes = [None; 3];
+            // The words were data (G10 L1 R, G92 X…).
+            (axes, r) = ([None; 3], None);
         }
         if let offsets::NonModal::Home(i) = non_modal {
             return self.go_home(line, i, &axes, &codes);
