@@ -56,3 +56,164 @@ fn seed003_pocket_matches_the_interpreted_tool_centre_path() {
     }
     eprintln!("seed 003: worst vertex error {worst:e} mm");
 }
+
+/// Tool-centre vertices (mm, rounded to 1e-6) of a program.
+fn vertices(text: &str, toml: &str) -> Vec<[f64; 2]> {
+    ends(&run(text, &machine(toml)).unwrap_or_else(|e| panic!("{e}")))
+        .iter()
+        .map(|p| [(p[0] * 1e6).round() / 1e6, (p[1] * 1e6).round() / 1e6])
+        .collect()
+}
+
+/// The arcs (centre, radius, clockwise) of a program, mm.
+fn arcs(text: &str, toml: &str) -> Vec<([f64; 2], f64, bool)> {
+    run(text, &machine(toml))
+        .unwrap()
+        .iter()
+        .filter_map(|b| match b.motion {
+            Motion::Arc {
+                center, clockwise, ..
+            } => {
+                let c = [center[0] * 1e3, center[1] * 1e3];
+                Some((
+                    c,
+                    (b.from[0] * 1e3 - c[0]).hypot(b.from[1] * 1e3 - c[1]),
+                    clockwise,
+                ))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+const SQUARE: &str = "G0 X10 Y5\nG1 F1000 X10 Y0\nX20\nY20\nX0\nY0\nX10\nG40 X10 Y5\nM2\n";
+
+/// LinuxCNC "G41, G42" (tool left / right of the programmed path) and "G41.1, G42.1" (radius in
+/// the D word): a 20 mm square run counter-clockwise. G41 puts a 2 mm tool inside: every corner is
+/// concave, reached by the intersection of the offset edges; entry ends on the offset of the next
+/// edge's start, exit starts at the offset of the last edge's end.
+#[test]
+fn inside_corners_by_intersection() {
+    let text = SQUARE.replace("G1 F1000", "G41.1 D2 G1 F1000");
+    let want = [
+        [10.0, 5.0],
+        [10.0, 2.0],
+        [18.0, 2.0],
+        [18.0, 18.0],
+        [2.0, 18.0],
+        [2.0, 2.0],
+        [10.0, 2.0],
+        [10.0, 5.0],
+    ];
+    assert_eq!(vertices(&text, ""), want);
+    // The same through the tool table (G41 D3, tool 3 of radius 2 mm).
+    let text = SQUARE.replace("G1 F1000", "G41 D3 G1 F1000");
+    assert_eq!(vertices(&text, "[tool.3]\nradius_mm = 2\n"), want);
+}
+
+/// Outside corners (G42 on the counter-clockwise square): 840D G450 (default) inserts an arc of
+/// the tool radius about each programmed corner, turning counter-clockwise; G451 / `extension`
+/// meets the extended edges at the corner of the offset square.
+#[test]
+fn outside_corners_by_arc_or_extension() {
+    let text = SQUARE.replace("G1 F1000", "G42.1 D2 G1 F1000");
+    let a = arcs(&text, "");
+    assert_eq!(a.len(), 4);
+    for ((c, r, cw), corner) in a.iter().zip([[20.0, 0.0], [20.0, 20.0], [0.0, 20.0], [0.0, 0.0]]) {
+        assert!(
+            (c[0] - corner[0]).abs() < 1e-9 && (c[1] - corner[1]).abs() < 1e-9,
+            "{c:?}"
+        );
+        assert!((r - 2.0).abs() < 1e-9 && !cw);
+    }
+    let v = vertices(&text, "");
+    assert_eq!(v[2], [20.0, -2.0]);
+    assert_eq!(v[3], [22.0, 0.0]);
+    let want = [
+        [10.0, 5.0],
+        [10.0, -2.0],
+        [22.0, -2.0],
+        [22.0, 22.0],
+        [-2.0, 22.0],
+        [-2.0, -2.0],
+        [10.0, -2.0],
+        [10.0, 5.0],
+    ];
+    assert_eq!(vertices(&text, "cutter_corner = \"extension\""), want);
+    assert_eq!(vertices(&text.replace("G42.1", "G451 G42.1"), ""), want);
+}
+
+/// Seed 003's example with the default G450: its five outside corners become arcs of radius 5
+/// about the programmed corners, beside its two programmed arcs (offset to radius 30 and 20).
+#[test]
+fn seed003_with_transition_arcs() {
+    let program = std::fs::read_to_string("../shared/corpus/seed003_pocket.txt").unwrap();
+    let a = arcs(&program, "[tool.1]\nradius_mm = 5\n");
+    let radii: Vec<f64> = a.iter().map(|x| (x.1 * 1e6).round() / 1e6).collect();
+    assert_eq!(radii, vec![5.0, 30.0, 20.0, 5.0, 5.0, 5.0, 5.0]);
+    let centres: Vec<[f64; 2]> = a.iter().map(|x| x.0).collect();
+    assert_eq!(centres[0], [40.0, 80.0]);
+    assert_eq!(centres[3], [110.0, 70.0]);
+    // The radius given in the word (G41.1 D5) is the same path as D1 from the table.
+    let word = program.replace("N10 G41", "N10 G41.1 D5");
+    assert_eq!(
+        vertices(&word, ""),
+        vertices(&program, "[tool.1]\nradius_mm = 5\n")
+    );
+}
+
+/// Gouge checks as located errors (LinuxCNC "G41, G42": the tool must fit the path).
+#[test]
+fn gouges_are_located_errors() {
+    let m = machine("");
+    let e = run(
+        "G0 X0 Y0\nG41.1 D5 G1 X10 Y0 F100\nG3 X10 Y6 R3\nG1 X0\nG40 X0 Y0\n",
+        &m,
+    )
+    .unwrap_err();
+    assert_eq!(
+        e,
+        "t.ngc:3:1: arc radius 3.0000 mm is smaller than the tool radius 5.0000 mm on this side (gouge)"
+    );
+    // A 4 mm slot for a 10 mm tool: the offset edges of the right end do not meet.
+    let e = run(
+        "G0 X0 Y-10\nG41.1 D5 G1 X0 Y0 F100\nX20\nY4\nX0\nY0\nG40 X0 Y-10\n",
+        &m,
+    )
+    .unwrap_err();
+    assert!(
+        e.starts_with("t.ngc:4:1: concave corner cannot be reached by the tool (radius 5.0000 mm)"),
+        "{e}"
+    );
+    let e = run("G0 X0 Y0\nG41.1 D1 G2 X2 Y0 R1 F100\n", &m).unwrap_err();
+    assert_eq!(
+        e,
+        "t.ngc:2:1: the G41/G42 entry move must be a straight line (G0/G1)"
+    );
+    let e = run("G41.1 D1\nG42.1 D1\n", &m).unwrap_err();
+    assert!(
+        e.starts_with("t.ngc:2:1: cutter compensation is already on"),
+        "{e}"
+    );
+    let e = run("G41.1 D-1\n", &m).unwrap_err();
+    assert_eq!(e, "t.ngc:1:7: D (tool radius) must not be negative");
+}
+
+/// Seed 003's example through the whole engine: it runs to the end, at the programmed exit.
+#[test]
+fn seed003_runs_through_the_engine() {
+    let program = std::fs::read_to_string("../shared/corpus/seed003_pocket.txt").unwrap();
+    let m = machine("[tool.1]\nradius_mm = 5\n");
+    let mut e = cnc_motion::engine::Engine::new(program.as_str(), "seed003_pocket.txt", &m).unwrap();
+    let mut n = 0;
+    while !e.finished() {
+        e.advance(0.01).unwrap();
+        n += 1;
+        assert!(n < 100_000);
+    }
+    let p = e.tick().p;
+    assert!(
+        (p[0] - 0.005).abs() < 1e-12 && (p[1] - 0.060).abs() < 1e-12 && (p[2] - 0.050).abs() < 1e-12,
+        "{p:?}"
+    );
+}

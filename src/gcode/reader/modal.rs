@@ -130,9 +130,9 @@ impl Reader {
                     group(10, col, self)?;
                     codes.nonmodal = Some((code, col));
                 }
-                450 | 451 => {
+                4500 | 4510 => {
                     group(11, col, self)?;
-                    self.corner = if code == 450 {
+                    self.corner = if code == 4500 {
                         CutterCorner::Arc
                     } else {
                         CutterCorner::Extension
