@@ -27,11 +27,7 @@ pub struct Tool {
     pub length: f64,
 }
 
-/// Largest tool number (LinuxCNC allows pocket numbers well beyond a real magazine).
-pub const MAX_TOOL: u32 = 9_999;
-/// Largest |tool length| or |offset| (m) and tool radius (m).
-pub const MAX_OFFSET_M: f64 = 100.0;
-pub const MAX_TOOL_RADIUS_M: f64 = 1.0;
+pub use super::ranges::{MAX_OFFSET_M, MAX_TOOL, MAX_TOOL_RADIUS_M};
 
 /// Names of the nine work coordinate systems, in order (G54 … G59.3).
 pub const WORK_SYSTEMS: [&str; 9] = [

@@ -4,6 +4,7 @@ mod comp;
 mod comp_geom;
 mod modal;
 mod offsets;
+mod words;
 
 use super::check;
 use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
@@ -244,52 +245,13 @@ impl Reader {
     /// Apply one line's words to the modal state; the block it makes, if any.
     fn execute(&mut self, line: u32, words: &[Word]) -> Result<Option<Block>, ProgramError> {
         let codes = self.modal_words(line, words)?;
-        let mut axes: [Option<(f64, u32)>; 3] = [None; 3];
-        let mut ijk: [Option<(f64, u32)>; 3] = [None; 3];
-        let (mut r, mut p) = (None, None);
-        let mut extra = offsets::Extra::default();
-        for w in words {
-            let v = w.value;
-            let located = |m: String| self.error(line, w.col, m);
-            match w.letter {
-                b'X' | b'Y' | b'Z' => {
-                    let i = (w.letter - b'X') as usize;
-                    if axes[i].is_some() {
-                        return Err(self.error(line, w.col, format!("{} given twice", w.letter as char)));
-                    }
-                    check::length(w.letter, v, self.unit).map_err(located)?;
-                    axes[i] = Some((v, w.col));
-                }
-                b'I' | b'J' | b'K' | b'R' => {
-                    check::length(w.letter, v, self.unit).map_err(located)?;
-                    match w.letter {
-                        b'R' => r = Some((v, w.col)),
-                        l => ijk[(l - b'I') as usize] = Some((v, w.col)),
-                    }
-                }
-                b'P' => p = Some((v, w.col)),
-                b'F' => {
-                    // G94: units per minute.
-                    self.feed = check::feed(v, self.unit).map_err(located)?;
-                }
-                b'T' => extra.t = Some((v, w.col)),
-                b'D' => extra.d = Some((v, w.col)),
-                b'H' => extra.h = Some((v, w.col)),
-                b'L' => extra.l = Some((v, w.col)),
-                b'G' | b'M' | b'N' | b'S' | b'Q' => {}
-                b'A' | b'B' | b'C' | b'U' | b'V' | b'W' => {
-                    let msg = format!(
-                        "unsupported axis word {} (only X, Y, Z are machine axes)",
-                        w.letter as char
-                    );
-                    return Err(self.error(line, w.col, msg));
-                }
-                other => {
-                    let msg = format!("unsupported word {}", other as char);
-                    return Err(self.error(line, w.col, msg));
-                }
-            }
-        }
+        let words::LineWords {
+            mut axes,
+            ijk,
+            mut r,
+            p,
+            extra,
+        } = self.read_words(line, words)?;
         self.apply_tool(line, &codes, &extra, &mut axes)?;
         if let Some((code, col)) = codes.comp {
             self.set_comp(line, code, col, extra.d)?;

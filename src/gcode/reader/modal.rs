@@ -42,26 +42,7 @@ impl Reader {
             }
             let col = w.col;
             if w.letter == b'M' {
-                match code {
-                    10 if !self.nc.optional_stop => {}
-                    0 | 10 => {
-                        group(7, col, self)?;
-                        let kind = if code == 0 {
-                            StopKind::Pause
-                        } else {
-                            StopKind::OptionalPause
-                        };
-                        codes.stop = Some((kind, col));
-                    }
-                    20 | 300 => {
-                        group(7, col, self)?;
-                        codes.stop = Some((StopKind::End, col));
-                    }
-                    60 => codes.tool_change = true,
-                    // Spindle, coolant, override switches: no motion.
-                    30 | 40 | 50 | 70 | 80 | 90 | 480 | 490 => {}
-                    _ => return Err(self.error(line, col, format!("unsupported M{}", fmt_code(code)))),
-                }
+                self.m_code(line, code, col, &mut codes)?;
                 continue;
             }
             match code {
@@ -111,54 +92,83 @@ impl Reader {
                         q: metres(q)?,
                     };
                 }
-                400 | 410 | 411 | 420 | 421 => {
-                    group(6, col, self)?;
-                    codes.comp = Some((code, col));
-                }
-                430 | 431 | 490 => {
-                    group(8, col, self)?;
-                    codes.tlo = Some((code, col));
-                }
-                540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => {
-                    group(9, col, self)?;
-                    self.work = match code {
-                        591..=593 => (code - 585) as usize,
-                        _ => ((code - 540) / 10) as usize,
-                    };
-                }
-                100 | 280 | 281 | 300 | 301 | 530 | 920..=923 => {
-                    group(10, col, self)?;
-                    codes.nonmodal = Some((code, col));
-                }
-                4500 | 4510 => {
-                    group(11, col, self)?;
-                    self.corner = if code == 4500 {
-                        CutterCorner::Arc
-                    } else {
-                        CutterCorner::Extension
-                    };
+                c if setup_group(c).is_some() => {
+                    group(setup_group(c).unwrap_or(0), col, self)?;
+                    self.setup_code(code, col, &mut codes);
                 }
                 // Accepted, no effect on motion: cancel cycles, feed per minute, spindle modes,
                 // canned-cycle return levels.
                 800 | 940 | 960 | 970 | 980 | 990 => {}
                 _ => {
-                    let what = match code {
-                        432 => " (tool length offset from a second tool)",
-                        330 | 331 | 760 => {
-                            " (spindle-synchronised motion: this model has no spindle position to follow)"
-                        }
-                        50..=53 => " (splines)",
-                        380..=389 => " (probing)",
-                        730 | 810..=890 => " (canned cycles)",
-                        930 => " (inverse-time feed)",
-                        950 => " (feed per revolution)",
-                        70 | 80 => " (lathe diameter/radius mode: this controller drives a 3-axis mill)",
-                        _ => "",
-                    };
+                    let what = unsupported_reason(code);
                     return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
                 }
             }
         }
         Ok(codes)
+    }
+
+    /// Cutter compensation, tool length, work system, non-modal and G450/G451 codes.
+    fn setup_code(&mut self, code: i64, col: u32, codes: &mut LineCodes) {
+        match code {
+            400 | 410 | 411 | 420 | 421 => codes.comp = Some((code, col)),
+            430 | 431 | 490 => codes.tlo = Some((code, col)),
+            591..=593 => self.work = (code - 585) as usize,
+            540..=590 => self.work = ((code - 540) / 10) as usize,
+            4500 => self.corner = CutterCorner::Arc,
+            4510 => self.corner = CutterCorner::Extension,
+            _ => codes.nonmodal = Some((code, col)),
+        }
+    }
+
+    /// M0/M1/M2/M30 (one of them a line), M6, and the M codes that do not move.
+    fn m_code(&self, line: u32, code: i64, col: u32, codes: &mut LineCodes) -> Result<(), ProgramError> {
+        let stop = match code {
+            10 if !self.nc.optional_stop => None,
+            0 => Some(StopKind::Pause),
+            10 => Some(StopKind::OptionalPause),
+            20 | 300 => Some(StopKind::End),
+            60 => {
+                codes.tool_change = true;
+                None
+            }
+            // Spindle, coolant, override switches: no motion.
+            30 | 40 | 50 | 70 | 80 | 90 | 480 | 490 => None,
+            _ => return Err(self.error(line, col, format!("unsupported M{}", fmt_code(code)))),
+        };
+        if let Some(kind) = stop {
+            if codes.stop.is_some() {
+                return Err(self.error(line, col, "two words of the same modal group on one line"));
+            }
+            codes.stop = Some((kind, col));
+        }
+        Ok(())
+    }
+}
+
+/// The modal group (index into the line's groups) of a setup code, None for the others.
+fn setup_group(code: i64) -> Option<usize> {
+    match code {
+        400 | 410 | 411 | 420 | 421 => Some(6),
+        430 | 431 | 490 => Some(8),
+        540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Some(9),
+        100 | 280 | 281 | 300 | 301 | 530 | 920..=923 => Some(10),
+        4500 | 4510 => Some(11),
+        _ => None,
+    }
+}
+
+/// Why a G code is refused (appended to "unsupported Gn").
+fn unsupported_reason(code: i64) -> &'static str {
+    match code {
+        432 => " (tool length offset from a second tool)",
+        330 | 331 | 760 => " (spindle-synchronised motion: this model has no spindle position to follow)",
+        50..=53 => " (splines)",
+        380..=389 => " (probing)",
+        730 | 810..=890 => " (canned cycles)",
+        930 => " (inverse-time feed)",
+        950 => " (feed per revolution)",
+        70 | 80 => " (lathe diameter/radius mode: this controller drives a 3-axis mill)",
+        _ => "",
     }
 }
