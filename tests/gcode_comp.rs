@@ -217,3 +217,63 @@ fn seed003_runs_through_the_engine() {
         "{p:?}"
     );
 }
+
+/// Distance (mm) from `p` to the segment a–b.
+fn to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    /// Any convex polygon cut outside (G42 on a counter-clockwise contour, LinuxCNC "G41, G42"):
+    /// the tool-centre path is continuous and never comes nearer than the tool radius to the
+    /// contour; with G450 every vertex and every corner arc is exactly at the radius.
+    #[test]
+    fn outside_offset_keeps_the_radius(
+        angles in proptest::collection::vec(0.0f64..1.0, 3..8),
+        size in 20.0f64..50.0,
+        r in 0.5f64..5.0,
+        extension in proptest::bool::ANY,
+    ) {
+        let mut a: Vec<f64> = angles.iter().enumerate().map(|(i, u)| (i as f64 + 0.2 + 0.6 * u) / angles.len() as f64).collect();
+        a.sort_by(f64::total_cmp);
+        let pts: Vec<[f64; 2]> = a.iter().map(|t| {
+            let t = t * std::f64::consts::TAU;
+            [size * t.cos(), size * t.sin()]
+        }).collect();
+        let mut text = format!("G0 X{:.6} Y{:.6}\nG42.1 D{r:.6} G1 F1000 X{:.6} Y{:.6}\n", 3.0 * pts[0][0], 3.0 * pts[0][1], pts[0][0], pts[0][1]);
+        for p in pts.iter().skip(1).chain(std::iter::once(&pts[0])) {
+            text += &format!("X{:.6} Y{:.6}\n", p[0], p[1]);
+        }
+        text += &format!("G40 X{:.6} Y{:.6}\nM2\n", 3.0 * pts[0][0], 3.0 * pts[0][1]);
+        let toml = if extension { "cutter_corner = \"extension\"" } else { "" };
+        let blocks = run(&text, &machine(toml)).unwrap();
+        let r = (r * 1e6).round() / 1e6;
+        let edges: Vec<([f64; 2], [f64; 2])> = (0..pts.len()).map(|i| (pts[i], pts[(i + 1) % pts.len()])).collect();
+        let mut last: Option<[f64; 3]> = None;
+        let n = blocks.len();
+        for (k, b) in blocks.iter().enumerate() {
+            let to = match b.motion {
+                Motion::Rapid { to } | Motion::Linear { to } | Motion::Arc { to, .. } => to,
+                _ => continue,
+            };
+            if let Some(l) = last {
+                proptest::prop_assert!((0..3).all(|i| (l[i] - b.from[i]).abs() < 1e-12));
+            }
+            last = Some(to);
+            if k == 0 || k + 2 >= n {
+                continue; // the rapid to the start and the exit move
+            }
+            let p = [to[0] * 1e3, to[1] * 1e3];
+            let d = edges.iter().map(|(a, b)| to_segment(p, *a, *b)).fold(f64::MAX, f64::min);
+            proptest::prop_assert!(d >= r - 1e-6, "vertex {p:?} at {d} < {r}");
+            if !extension {
+                proptest::prop_assert!((d - r).abs() < 1e-6, "G450 vertex {p:?} at {d} ≠ {r}");
+            }
+        }
+        let end = last.unwrap();
+        proptest::prop_assert!((end[0] * 1e3 - 3.0 * pts[0][0]).abs() < 1e-6, "exit at the programmed point");
+    }
+}
