@@ -277,3 +277,35 @@ proptest::proptest! {
         proptest::prop_assert!((end[0] * 1e3 - 3.0 * pts[0][0]).abs() < 1e-6, "exit at the programmed point");
     }
 }
+
+/// Blocks without motion in the plane (a repeated point, a Z move, a dwell) between compensated
+/// elements run at the tool's place in order, before the G40 exit (found by the fuzz harness).
+#[test]
+fn blocks_without_plane_motion_keep_their_order() {
+    let text = "G0 X0 Y-5\nG41.1 D1 G1 X0 Y0 F100\nX10\nX10\nZ-1\nG4 P0.5\nY10\nY10\nG40 X0 Y10\nG0 Z5\nM2\n";
+    let b = run(text, &machine("")).unwrap();
+    let z: Vec<f64> = ends(&b).iter().map(|p| p[2]).collect();
+    assert_eq!(z.last(), Some(&5.0), "{z:?}");
+    let lines: Vec<u32> = b.iter().map(|b| b.line).collect();
+    assert!(lines.windows(2).all(|w| w[0] <= w[1]), "{lines:?}");
+    assert!(b.iter().any(|b| matches!(b.motion, Motion::Dwell { .. })));
+}
+
+/// Compensated rapids (G0 with G41/G42) keep straight moves: outside corners are extended, not
+/// arcs, since an arc needs a programmed feed (found by the fuzz harness).
+#[test]
+fn compensated_rapids_have_no_corner_arcs() {
+    let text = SQUARE.replace("G1 F1000", "G42.1 D2 G0");
+    assert!(arcs(&text, "").is_empty());
+    let want = [
+        [10.0, 5.0],
+        [10.0, -2.0],
+        [22.0, -2.0],
+        [22.0, 22.0],
+        [-2.0, 22.0],
+        [-2.0, -2.0],
+        [10.0, -2.0],
+        [10.0, 5.0],
+    ];
+    assert_eq!(vertices(&text, ""), want);
+}

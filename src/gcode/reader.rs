@@ -354,13 +354,14 @@ impl Reader {
         codes: &LineCodes,
     ) -> Result<Option<Block>, ProgramError> {
         let via = self.target(line, axes, false)?;
-        let mut home = via;
         let none = axes.iter().all(Option::is_none);
-        for k in 0..3 {
+        let home: Vec3 = std::array::from_fn(|k| {
             if none || axes[k].is_some() {
-                home[k] = self.nc.home[i][k];
+                self.nc.home[i][k]
+            } else {
+                via[k]
             }
-        }
+        });
         let first = self.block(line, Motion::Rapid { to: via });
         self.position = via;
         let second = self.block(line, Motion::Rapid { to: home });

@@ -154,10 +154,11 @@ impl Reader {
             }
         } else if let Some(held) = self.comp.held.take() {
             if side == 0.0 {
-                self.end_held(held, None);
                 if matches!(b.motion, Motion::Arc { .. }) {
                     return Err(self.error(b.line, 1, "the G40 exit move must be a straight line (G0/G1)"));
                 }
+                self.end_held(held, None);
+                self.flush_deferred();
                 self.emit_plain(b);
             } else {
                 self.corner(held, b, elem)?;
@@ -231,7 +232,9 @@ impl Reader {
             motion,
             ..reader.piece_of(&held)
         };
-        if self.corner == CutterCorner::Arc {
+        // A rapid has no programmed feed for an arc: its outside corners are extended lines.
+        let rapid = matches!(held.motion, Motion::Rapid { .. });
+        if self.corner == CutterCorner::Arc && !rapid {
             self.end_held(held, Some(p1));
             let (a, b, _) = plane_axes(self.comp.plane);
             let mut center = [0.0; 3];
