@@ -333,7 +333,10 @@ fn harness_classifies_known_cases() {
         run_case(ok, "lookahead_blocks = 100000000\n").0,
         Outcome::MachineError
     );
-    assert_eq!(run_case("G21 F100\nG1 X#1\n", "").0, Outcome::ProgramError);
+    assert_eq!(
+        run_case("G21 F100\nG1 X#<undefined>\n", "").0,
+        Outcome::ProgramError
+    );
     // An error outside the file is unlocated.
     let far = ProgramError::new("p.ngc", 1, 99, "x");
     assert!(!located(&far, ok, "p.ngc") && located(&ProgramError::new("p.ngc", 2, 1, "x"), ok, "p.ngc"));

@@ -131,12 +131,12 @@ fn refusals_name_the_place() {
             "t.ngc:1:1: unsupported O-word (subroutines and control flow)",
         ),
         (
-            "G1 X#1 F100\n",
-            "t.ngc:1:5: unsupported # parameter (variables are not supported)",
+            "G1 X#<a> F100\n",
+            "t.ngc:1:5: X: parameter #<a> is not defined",
         ),
         (
-            "G1 X[1+2] F100\n",
-            "t.ngc:1:5: unsupported expression '[' (expressions are not supported)",
+            "G1 X[1+2 F100\n",
+            "t.ngc:1:10: X: expected ']'",
         ),
         ("G1 X1\n", "t.ngc:1:1: G1 with no feed rate: F was never set"),
         (

@@ -7,8 +7,9 @@ mod offsets;
 mod words;
 
 use super::check;
+use super::params::Params;
 use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
-use super::words::{split, Word};
+use super::words::{split_with, Sets, Word};
 use super::{Block, Motion, PathMode, Plane, StopKind};
 use crate::config::{CutterCorner, NcSetup};
 use crate::error::ProgramError;
@@ -88,6 +89,11 @@ pub struct Reader {
     pending: std::collections::VecDeque<Block>,
     #[serde(skip)]
     words: Vec<Word>,
+    /// Numbered and named parameters (bounded), and the settings of the line being read.
+    #[serde(default)]
+    params: Box<Params>,
+    #[serde(skip)]
+    sets: Sets,
     #[serde(skip)]
     line_buf: Vec<u8>,
 }
@@ -134,6 +140,8 @@ impl Reader {
             comp: Box::default(),
             pending: Default::default(),
             words: Vec::new(),
+            params: Box::default(),
+            sets: Vec::new(),
             line_buf: Vec::new(),
         }
     }
@@ -236,7 +244,14 @@ impl Reader {
             raw = &deleted;
         }
         let mut words = std::mem::take(&mut self.words);
-        let parsed = split(raw, &mut words).map_err(|e| self.error(line, e.col, e.message));
+        let mut sets = std::mem::take(&mut self.sets);
+        let parsed = split_with(raw, &mut words, &self.params, &mut sets)
+            .map_err(|e| self.error(line, e.col, e.message))
+            .and_then(|()| {
+                let set = self.params.set(&mut sets);
+                set.map_err(|(c, m)| self.error(line, c as u32 + 1, m))
+            });
+        self.sets = sets;
         let result = parsed.and_then(|()| self.execute(line, &words));
         self.words = words;
         result
