@@ -309,3 +309,29 @@ fn compensated_rapids_have_no_corner_arcs() {
     ];
     assert_eq!(vertices(&text, ""), want);
 }
+
+/// Compensation in G18 (LinuxCNC "G41, G42": in the active plane): the square of
+/// `inside_corners_by_intersection` drawn in Z–X (G18's first and second axes) gives the same
+/// offset vertices in (Z, X), with Y untouched.
+#[test]
+fn compensation_in_the_xz_plane() {
+    let text = "G18 G0 Z10 X5\nG41.1 D2 G1 F1000 Z10 X0\nZ20\nX20\nZ0\nX0\nZ10\nG40 Z10 X5\nM2\n";
+    let zx: Vec<[f64; 3]> = ends(&run(text, &machine("")).unwrap())
+        .iter()
+        .map(|p| [(p[2] * 1e6).round() / 1e6, (p[0] * 1e6).round() / 1e6, p[1]])
+        .collect();
+    let want = [
+        [10.0, 5.0],
+        [10.0, 2.0],
+        [18.0, 2.0],
+        [18.0, 18.0],
+        [2.0, 18.0],
+        [2.0, 2.0],
+        [10.0, 2.0],
+        [10.0, 5.0],
+    ];
+    assert_eq!(zx.len(), want.len());
+    for (g, w) in zx.iter().zip(want) {
+        assert_eq!([g[0], g[1], g[2]], [w[0], w[1], 0.0]);
+    }
+}

@@ -17,19 +17,11 @@ pub const FUNCTIONS: [&str; 14] = [
 ];
 
 /// The parameter store.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+/// Only the parameters set are stored (a saved FMU state stays small).
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Params {
-    numbered: Vec<f64>,
+    numbered: BTreeMap<usize, f64>,
     named: BTreeMap<String, f64>,
-}
-
-impl Default for Params {
-    fn default() -> Self {
-        Params {
-            numbered: vec![0.0; MAX_NUMBERED + 1],
-            named: BTreeMap::new(),
-        }
-    }
 }
 
 /// A parameter to set after the line is read (RS274NGC: settings take effect after the line).
@@ -44,7 +36,9 @@ impl Params {
     pub fn set(&mut self, sets: &mut Vec<(Key, f64, usize)>) -> Result<(), (usize, String)> {
         for (key, v, col) in sets.drain(..) {
             match key {
-                Key::Number(n) => self.numbered[n] = v,
+                Key::Number(n) => {
+                    self.numbered.insert(n, v);
+                }
                 Key::Name(s) => {
                     if self.named.len() >= MAX_NAMED && !self.named.contains_key(&s) {
                         return Err((col, format!("more than {MAX_NAMED} named parameters")));
@@ -140,7 +134,7 @@ impl<'a> Expr<'a> {
 
     fn get(&self, key: &Key, at: usize) -> R<f64> {
         match key {
-            Key::Number(n) => Ok(self.params.numbered[*n]),
+            Key::Number(n) => Ok(self.params.numbered.get(n).copied().unwrap_or(0.0)),
             Key::Name(s) => self
                 .params
                 .named
