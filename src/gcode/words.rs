@@ -69,15 +69,7 @@ fn split_inner(
                 let Some((p, sets)) = params.as_mut() else {
                     return Err(err(i, "unsupported # parameter (variables are not supported)"));
                 };
-                let mut e = Expr::new(b, i + 1, p);
-                let key = e.key().map_err(|(c, m)| err(c, m))?;
-                if e.peek_byte() != Some(b'=') {
-                    return Err(err(e.i, "expected '=' after the parameter (a parameter setting)"));
-                }
-                e.i += 1;
-                let v = e.primary().map_err(|(c, m)| err(c, m))?;
-                sets.push((key, v, i));
-                i = e.i;
+                i = setting(b, i, p, sets)?;
             }
             b'[' => {
                 return Err(err(
@@ -90,19 +82,16 @@ fn split_inner(
                 let col = i;
                 i += 1;
                 let k = i + b[i..].iter().take_while(|&&x| x == b' ' || x == b'\t').count();
-                if let Some((p, _)) = params.as_ref() {
-                    if is_expression(b, k) {
-                        let mut e = Expr::new(b, k, p);
-                        let letter = c.to_ascii_uppercase() as char;
-                        let value = e.primary().map_err(|(at, m)| err(at, format!("{letter}: {m}")))?;
-                        i = e.i;
-                        out.push(Word {
-                            letter: c.to_ascii_uppercase(),
-                            value,
-                            col: col as u32 + 1,
-                        });
-                        continue;
-                    }
+                let letter = c.to_ascii_uppercase();
+                if let Some((p, _)) = params.as_ref().filter(|_| is_expression(b, k)) {
+                    let mut e = Expr::new(b, k, p);
+                    let value = e
+                        .primary()
+                        .map_err(|(at, m)| err(at, format!("{}: {m}", letter as char)))?;
+                    i = e.i;
+                    let col = col as u32 + 1;
+                    out.push(Word { letter, value, col });
+                    continue;
                 }
                 match b.get(k) {
                     Some(b'#') => {
@@ -128,6 +117,19 @@ fn split_inner(
         }
     }
     Ok(())
+}
+
+/// A parameter setting `#key = value` starting at `i` (the `#`); the index after it.
+fn setting(b: &[u8], i: usize, params: &Params, sets: &mut Sets) -> Result<usize, LexError> {
+    let mut e = Expr::new(b, i + 1, params);
+    let key = e.key().map_err(|(c, m)| err(c, m))?;
+    if e.peek_byte() != Some(b'=') {
+        return Err(err(e.i, "expected '=' after the parameter (a parameter setting)"));
+    }
+    e.i += 1;
+    let v = e.primary().map_err(|(c, m)| err(c, m))?;
+    sets.push((key, v, i));
+    Ok(e.i)
 }
 
 /// A value that needs the evaluator: `#`, `[`, a function name, or a sign before them.
