@@ -21,15 +21,6 @@ impl Reader {
             groups[g] = Some(col);
             Ok(())
         };
-        let (mut tolerance, mut q) = (None, None);
-        for w in words {
-            if w.letter == b'P' {
-                tolerance = Some(*w);
-            }
-            if w.letter == b'Q' {
-                q = Some(*w);
-            }
-        }
         for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
             // Codes with one decimal (G90.1); compare in tenths.
             let code = (w.value * 10.0).round() as i64;
@@ -80,17 +71,7 @@ impl Reader {
                 }
                 640 => {
                     group(5, col, self)?;
-                    let metres = |w: Option<Word>| {
-                        w.map(|w| {
-                            check::blend_tolerance(w.letter, w.value, self.unit)
-                                .map_err(|m| self.error(line, w.col, m))
-                        })
-                        .transpose()
-                    };
-                    self.path_mode = PathMode::Blend {
-                        tolerance: metres(tolerance)?,
-                        q: metres(q)?,
-                    };
+                    self.path_mode = self.blend_mode(line, words)?;
                 }
                 c if setup_group(c).is_some() => {
                     group(setup_group(c).unwrap_or(0), col, self)?;
@@ -106,6 +87,21 @@ impl Reader {
             }
         }
         Ok(codes)
+    }
+
+    /// G64 [P tolerance] [Q merge tolerance] (LinuxCNC "G64").
+    fn blend_mode(&self, line: u32, words: &[Word]) -> Result<PathMode, ProgramError> {
+        let last = |letter: u8| words.iter().rev().find(|w| w.letter == letter).copied();
+        let metres = |w: Option<Word>| {
+            w.map(|w| {
+                check::blend_tolerance(w.letter, w.value, self.unit).map_err(|m| self.error(line, w.col, m))
+            })
+            .transpose()
+        };
+        Ok(PathMode::Blend {
+            tolerance: metres(last(b'P'))?,
+            q: metres(last(b'Q'))?,
+        })
     }
 
     /// Cutter compensation, tool length, work system, non-modal and G450/G451 codes.
