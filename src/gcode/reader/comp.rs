@@ -200,13 +200,9 @@ impl Reader {
             };
             let mid = [(p1[0] + p2[0]) / 2.0, (p1[1] + p2[1]) / 2.0];
             let x = intersect(&curve(&e1, t1, p1), &curve(&e2, t2, p2), mid);
-            let reachable = x.filter(|x| {
-                let back1 = matches!(e1, Elem::Line { .. })
-                    && dot(add(*x, self.plane_of(self.comp.tool), -1.0), t1) <= EPS;
-                let end2 = e2.offset_point(e2.end(), side, r);
-                let back2 = matches!(e2, Elem::Line { .. }) && dot(add(end2, *x, -1.0), t2) <= EPS;
-                !(back1 || back2)
-            });
+            let start1 = self.plane_of(self.comp.tool);
+            let end2 = e2.offset_point(e2.end(), side, r);
+            let reachable = x.filter(|x| e1.runs_forward(start1, *x) && e2.runs_forward(*x, end2));
             let Some(x) = reachable else {
                 let m = format!(
                     "concave corner cannot be reached by the tool (radius {:.4} mm): the offset elements do not meet (gouge)",

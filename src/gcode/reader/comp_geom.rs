@@ -119,6 +119,37 @@ impl Elem {
     }
 }
 
+impl Elem {
+    /// Whether the offset element from `p` to `q` runs the programmed way and no longer than
+    /// the programmed element: a line not reversed, an arc not swept beyond its own angle (a
+    /// concave corner eating the whole element is a gouge).
+    pub fn runs_forward(&self, p: P2, q: P2) -> bool {
+        match *self {
+            Elem::Line { .. } => dot(sub(q, p), self.tangent(p)) > EPS,
+            Elem::Arc {
+                start,
+                end,
+                center,
+                cw,
+                ..
+            } => {
+                let full = sweep(center, start, end, cw);
+                full < EPS || sweep(center, p, q, cw) <= full + 1e-9
+            }
+        }
+    }
+}
+
+const EPS: f64 = 1e-9;
+
+/// Angle swept from `p` to `q` about `c` (0 … 2π), clockwise or not.
+fn sweep(c: P2, p: P2, q: P2, cw: bool) -> f64 {
+    let a = (p[1] - c[1]).atan2(p[0] - c[0]);
+    let b = (q[1] - c[1]).atan2(q[0] - c[0]);
+    let s = if cw { a - b } else { b - a };
+    s.rem_euclid(std::f64::consts::TAU)
+}
+
 /// Intersections of two offset elements (line through `p` along `t`, or circle `c`, `radius`).
 pub enum Curve {
     Line(P2, P2),
@@ -161,4 +192,32 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
     points
         .into_iter()
         .min_by(|p, q| dist(*p, near).total_cmp(&dist(*q, near)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offset_elements_run_forward_only_within_their_element() {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let arc = Elem::Arc {
+            start: [1.0, 0.0],
+            end: [0.0, 1.0],
+            center: [0.0, 0.0],
+            radius: 1.0,
+            cw: false,
+        };
+        assert!(arc.runs_forward([2.0, 0.0], [2.0 * h, 2.0 * h]));
+        // Starting before the arc's start: the offset would sweep more than the quarter.
+        assert!(!arc.runs_forward([h, -h], [0.0, 1.0]));
+        let line = Elem::Line {
+            start: [0.0, 0.0],
+            end: [1.0, 0.0],
+        };
+        assert!(line.runs_forward([0.0, 1.0], [0.5, 1.0]) && !line.runs_forward([0.5, 1.0], [0.2, 1.0]));
+        // G41 on a counter-clockwise arc: the tool inside, radius R − r; a line's offset is beside it.
+        assert_eq!(arc.offset_radius(1.0, 0.25), Some(0.75));
+        assert_eq!(line.offset_point([1.0, 0.0], -1.0, 0.5), [1.0, -0.5]);
+    }
 }
