@@ -114,7 +114,7 @@ fn refusals_name_the_place() {
         ),
         (
             "G42 X2\n",
-            "t.ngc:1:5: axis words without a motion mode (G0, G1, G2, G3)",
+            "t.ngc:1:5: axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
         ),
         (
             "G1 F100\nG33 Z-1 K1\n",
@@ -141,7 +141,7 @@ fn refusals_name_the_place() {
         ("G1 X1\n", "t.ngc:1:1: G1 with no feed rate: F was never set"),
         (
             "X1\n",
-            "t.ngc:1:1: axis words without a motion mode (G0, G1, G2, G3)",
+            "t.ngc:1:1: axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
         ),
         (
             "G0 G1 X1\n",

@@ -2,6 +2,7 @@
 
 mod comp;
 mod comp_geom;
+mod cycles;
 mod modal;
 mod offsets;
 mod words;
@@ -84,6 +85,9 @@ pub struct Reader {
     /// Cutter compensation: mode, and the blocks held back for one block of look-ahead.
     #[serde(default)]
     comp: Box<comp::Comp>,
+    /// Drilling cycle words and retract mode.
+    #[serde(default)]
+    cycle: cycles::Cycle,
     /// Blocks decoded but not yet returned (a line can give a motion and a stop, G28 two moves).
     #[serde(skip)]
     pending: std::collections::VecDeque<Block>,
@@ -138,6 +142,7 @@ impl Reader {
             g92: [0.0; 3],
             g92_on: false,
             comp: Box::default(),
+            cycle: cycles::Cycle::default(),
             pending: Default::default(),
             words: Vec::new(),
             params: Box::default(),
@@ -297,12 +302,23 @@ impl Reader {
                 Some(m) => Some((m, axes.iter().flatten().map(|a| a.1).min().unwrap_or(1))),
                 None => {
                     let col = axes.iter().flatten().map(|a| a.1).min().unwrap_or(1);
-                    return Err(self.error(line, col, "axis words without a motion mode (G0, G1, G2, G3)"));
+                    return Err(self.error(
+                        line,
+                        col,
+                        "axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
+                    ));
                 }
             },
             None => None,
         };
         let mut block = None;
+        if let Some((m, col)) = motion.filter(|m| m.0 >= 73) {
+            let fresh = !matches!(self.motion, Some(73..));
+            self.motion = Some(m);
+            let xy = axes;
+            let (r, q) = (r, extra.q);
+            return self.canned(line, col, m, fresh, cycles::CycleWords { xy, r, p, q }, &codes);
+        }
         if let Some((m, col)) = motion {
             self.motion = Some(m);
             let to = self.target(line, &axes, non_modal == offsets::NonModal::Machine)?;

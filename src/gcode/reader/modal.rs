@@ -37,7 +37,7 @@ impl Reader {
                 continue;
             }
             match code {
-                0 | 10 | 20 | 30 => {
+                0 | 10 | 20 | 30 | 730 | 810 | 820 | 830 => {
                     group(0, col, self)?;
                     codes.motion = Some(((code / 10) as u8, col));
                 }
@@ -79,7 +79,9 @@ impl Reader {
                 }
                 // Accepted, no effect on motion: cancel cycles, feed per minute, spindle modes,
                 // canned-cycle return levels.
-                800 | 940 | 960 | 970 | 980 | 990 => {}
+                800 => self.motion = None,
+                980 | 990 => self.set_retract_to_r(code == 990),
+                940 | 960 | 970 => {}
                 _ => {
                     let what = unsupported_reason(code);
                     return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
@@ -161,7 +163,7 @@ fn unsupported_reason(code: i64) -> &'static str {
         330 | 331 | 760 => " (spindle-synchronised motion: this model has no spindle position to follow)",
         50..=53 => " (splines)",
         380..=389 => " (probing)",
-        730 | 810..=890 => " (canned cycles)",
+        840..=890 => " (canned cycles other than G73, G81, G82, G83)",
         930 => " (inverse-time feed)",
         950 => " (feed per revolution)",
         70 | 80 => " (lathe diameter/radius mode: this controller drives a 3-axis mill)",

@@ -26,6 +26,7 @@ pub(super) struct Extra {
     pub d: Option<(f64, u32)>,
     pub h: Option<(f64, u32)>,
     pub l: Option<(f64, u32)>,
+    pub q: Option<(f64, u32)>,
 }
 
 /// What a non-modal code leaves for the motion of its line.

@@ -57,7 +57,8 @@ impl Reader {
                 b'D' => extra.d = Some((v, w.col)),
                 b'H' => extra.h = Some((v, w.col)),
                 b'L' => extra.l = Some((v, w.col)),
-                b'G' | b'M' | b'N' | b'S' | b'Q' => {}
+                b'Q' => extra.q = Some((v, w.col)),
+                b'G' | b'M' | b'N' | b'S' => {}
                 b'A' | b'B' | b'C' | b'U' | b'V' | b'W' => {
                     let msg = format!(
                         "unsupported axis word {} (only X, Y, Z are machine axes)",
