@@ -1,6 +1,6 @@
 //! One line of G-code → its words (letter, number, column). Comments `( )` and `;`, spaces inside
-//! numbers (as LinuxCNC allows), and the constructs we do not run (`#` parameters, `[ ]`
-//! expressions, O-words) reported with their column.
+//! numbers (as LinuxCNC allows); with `split_with`, `#` parameters and `[ ]` expressions
+//! evaluated (params.rs); O-words reported with their column.
 
 use super::params::{Expr, Key, Params, FUNCTIONS};
 
