@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
-const STATE_VERSION: u32 = 2;
+const STATE_VERSION: u32 = 3; // 3: reader NC state (tools, offsets, compensation, parameters)
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
@@ -66,8 +66,7 @@ impl Engine {
     ) -> Result<Engine, ProgramError> {
         let program = program.into();
         let start = [0.0; 3];
-        let reader =
-            Reader::new(program.clone(), file, start).with_arc_tolerance(machine.arc_radius_tolerance);
+        let reader = Reader::new(program.clone(), file, start).with_machine(machine);
         crate::gcode::validate_with(reader.clone())?;
         let interp = Interpolator::new(start);
         let tick = interp.sample(0.0, false);

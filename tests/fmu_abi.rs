@@ -334,7 +334,7 @@ fn bad_programs_fail_initialization_with_their_place() {
     for (program, want) in [
         (
             "G21 G90\nG1 X1 F100\nG41 D1 X2\n",
-            "program:3:1: unsupported G41 (cutter radius compensation)",
+            "program:3:5: D1: tool 1 is not in the machine's tool table ([tool.1])",
         ),
         ("G1 X1 F100\nG1 X2 Y$\n", "program:2:7: Y: a number is missing"),
         (
@@ -397,5 +397,81 @@ fn extreme_parameters_are_refused_through_the_c_abi() {
         "{}",
         fmu.last_log()
     );
+    fmu.free(c);
+}
+
+/// Issue 14 through the FMU's `program` string: cutter compensation with the radius in the word
+/// (LinuxCNC "G41.1, G42.1"), work offset G10 L2 (LinuxCNC "G10 L2"), G92 and block delete run
+/// through the C ABI exactly as through the library, and the tool centre leaves the contour by
+/// the radius (2 mm right of the first edge, y = −2 mm).
+#[test]
+fn compensated_program_through_the_program_string_equals_the_engine() {
+    let text = "G21 G90 G17 F3000\nG10 L2 P1 X1\n/G0 X50\nG0 X-1 Y0\nG42.1 D2 G1 X9 Y0\nX29\n\
+                G3 X39 Y10 R10\nG1 Y30\nX9\nG40 X-1 Y-1\nG92 X0 Y0\nG0 X1\nM2\n";
+    let fmu = Fmu::load();
+    let c = fmu.instantiate("comp");
+    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
+    let finished_vr = fmu.vr("status.finished");
+    let machine = cnc_motion::config::Machine::default();
+    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
+        .unwrap()
+        .with_servo(true);
+    let (mut n, mut done, mut y_min) = (0, 0, 0.0_f64);
+    while done == 0 {
+        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
+        engine.advance(1e-3).unwrap();
+        n += 1;
+        let y = fmu.real(c, "y.command.position");
+        assert_eq!(y, engine.tick().p[1]);
+        y_min = y_min.min(y);
+        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
+        assert!(n < 200_000);
+    }
+    // Within the default G64 path tolerance (0.01 mm) of the blended corners.
+    assert!(
+        (y_min + 0.002).abs() < 1e-5,
+        "tool centre 2 mm right of y = 0: {y_min}"
+    );
+    // After G92 X0 at machine X0 (program X−1 + G10 offset 1), X1 is machine X1.
+    let x = fmu.real(c, "x.command.position");
+    assert!((x - 0.001).abs() < 1e-12, "{x}");
+    fmu.free(c);
+}
+
+/// Issue 14's other words through the FMU's `program` string, tick for tick equal to the
+/// library: parameters and expressions (LinuxCNC "Parameters", "Expressions"), G43.1 / G49,
+/// G54…G59.3 with G10 L20, G53, G81 / G83 with G98 / G99 / G80, G28, M1, block delete.
+#[test]
+fn new_words_through_the_program_string_equal_the_engine() {
+    let text = "G21 G90 G17\n#<depth> = 2\n#1 = [#<depth> * 2]\nG10 L20 P2 X0 Y0 Z0\nG55 G43.1 Z1\n\
+                /G0 X99\nG0 X[#1 + 1] Y SIN[90]\nG81 G98 X5 Y5 Z-#<depth> R1 F600\nX8\nG80\nM1\n\
+                G83 G99 X10 Y10 Z-3 R1 Q1\nG80 G49\nG53 G0 Z5\nG28\nM2\n";
+    let fmu = Fmu::load();
+    let c = fmu.instantiate("words");
+    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
+    let finished_vr = fmu.vr("status.finished");
+    let machine = cnc_motion::config::Machine::default();
+    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
+        .unwrap()
+        .with_servo(true);
+    let (mut n, mut done, mut z_min) = (0, 0, 0.0_f64);
+    while done == 0 {
+        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
+        engine.advance(1e-3).unwrap();
+        n += 1;
+        let z = fmu.real(c, "z.command.position");
+        assert_eq!(z, engine.tick().p[2]);
+        z_min = z_min.min(z);
+        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
+        assert!(n < 200_000);
+    }
+    // G43.1 Z1 lifts every programmed Z by 1 mm: G83's bottom Z−3 is machine Z−2.
+    assert!((z_min + 0.002).abs() < 1e-9, "{z_min}");
+    let end = ["x", "y", "z"].map(|a| fmu.real(c, &format!("{a}.command.position")));
+    assert_eq!(end, [0.0, 0.0, 0.0], "G28 ends at the home position");
     fmu.free(c);
 }

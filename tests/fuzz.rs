@@ -62,6 +62,11 @@ fn corpus() -> Vec<(String, String)> {
         "default.ngc".to_string(),
         include_str!("../resources/default.ngc").to_string(),
     )];
+    // Cutter compensation (issue 14): seed 003's pocket with G41.1 D5.
+    out.push((
+        "seed003_pocket_g41.ngc".to_string(),
+        include_str!("../examples/seed003_pocket_g41.ngc").to_string(),
+    ));
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus");
     let mut paths: Vec<_> = std::fs::read_dir(dir)
         .expect("../shared/corpus beside the clone")
@@ -213,7 +218,7 @@ fn located(e: &ProgramError, text: &str, file: &str) -> bool {
 
 /// End of the last motion of the program, read as the engine reads it.
 fn programmed_end(text: &str, machine: &Machine) -> Option<[f64; 3]> {
-    let mut r = Reader::new(text, "p.ngc", [0.0; 3]).with_arc_tolerance(machine.arc_radius_tolerance);
+    let mut r = Reader::new(text, "p.ngc", [0.0; 3]).with_machine(machine);
     let mut end = [0.0; 3];
     while let Some(b) = r.next_block().ok()? {
         if let Motion::Rapid { to } | Motion::Linear { to } | Motion::Arc { to, .. } = b.motion {
@@ -331,7 +336,10 @@ fn harness_classifies_known_cases() {
         run_case(ok, "lookahead_blocks = 100000000\n").0,
         Outcome::MachineError
     );
-    assert_eq!(run_case("G21 F100\nG1 X#1\n", "").0, Outcome::ProgramError);
+    assert_eq!(
+        run_case("G21 F100\nG1 X#<undefined>\n", "").0,
+        Outcome::ProgramError
+    );
     // An error outside the file is unlocated.
     let far = ProgramError::new("p.ngc", 1, 99, "x");
     assert!(!located(&far, ok, "p.ngc") && located(&ProgramError::new("p.ngc", 2, 1, "x"), ok, "p.ngc"));

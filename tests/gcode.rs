@@ -113,17 +113,20 @@ fn refusals_name_the_place() {
     let cases = [
         (
             "G1 X1 F100\nG41 D1 X2\n",
-            "t.ngc:2:1: unsupported G41 (cutter radius compensation)",
+            "t.ngc:2:5: D1: tool 1 is not in the machine's tool table ([tool.1])",
         ),
         (
             "G42 X2\n",
-            "t.ngc:1:1: unsupported G42 (cutter radius compensation)",
+            "t.ngc:1:5: axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
         ),
         (
             "G1 F100\nG33 Z-1 K1\n",
-            "t.ngc:2:1: unsupported G33 (spindle-synchronised motion)",
+            "t.ngc:2:1: unsupported G33 (spindle-synchronised motion: this model has no spindle position to follow)",
         ),
-        ("G10 L2 P1 X0\n", "t.ngc:1:1: unsupported G10 (data setting)"),
+        (
+            "G10 L5 P1 X0\n",
+            "t.ngc:1:5: unsupported G10 L5 (L1, L2, L10, L20 are)",
+        ),
         ("G5 X1 Y1 I1 J0 P1 Q1\n", "t.ngc:1:1: unsupported G5 (splines)"),
         ("G93 G1 X1 F1\n", "t.ngc:1:1: unsupported G93 (inverse-time feed)"),
         (
@@ -131,17 +134,17 @@ fn refusals_name_the_place() {
             "t.ngc:1:1: unsupported O-word (subroutines and control flow)",
         ),
         (
-            "G1 X#1 F100\n",
-            "t.ngc:1:5: unsupported # parameter (variables are not supported)",
+            "G1 X#<a> F100\n",
+            "t.ngc:1:5: X: parameter #<a> is not defined",
         ),
         (
-            "G1 X[1+2] F100\n",
-            "t.ngc:1:5: unsupported expression '[' (expressions are not supported)",
+            "G1 X[1+2 F100\n",
+            "t.ngc:1:10: X: expected ']'",
         ),
         ("G1 X1\n", "t.ngc:1:1: G1 with no feed rate: F was never set"),
         (
             "X1\n",
-            "t.ngc:1:1: axis words without a motion mode (G0, G1, G2, G3)",
+            "t.ngc:1:1: axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
         ),
         (
             "G0 G1 X1\n",

@@ -91,8 +91,8 @@ fn utf8_errors_are_located_and_a_bom_is_accepted() {
     assert_eq!(validate("\u{feff}G21 G1 X1 F100\n", "p.ngc").unwrap(), 1);
     // Columns after a BOM count as an editor shows them.
     assert_eq!(
-        error("\u{feff}G21 G1 X#1\n"),
-        "p.ngc:1:9: unsupported # parameter (variables are not supported)"
+        error("\u{feff}G21 G1 X#<u>\n"),
+        "p.ngc:1:9: X: parameter #<u> is not defined"
     );
     // A "line" without end (/dev/zero-like) is refused, not read into memory.
     let long = format!("G21 ({}", "x".repeat(100_000));

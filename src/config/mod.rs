@@ -2,7 +2,10 @@
 //! describes (SI). Every key is optional; the defaults are a small 3-axis mill after seed 000,
 //! Table 1 (1.2 mm screw lead, 5000 rpm → 6000 mm/min).
 
+pub mod nc;
 pub mod ranges;
+
+pub use nc::{CutterCorner, NcSetup, Tool};
 
 use crate::feed::ProfileKind;
 use crate::servo::ServoParams;
@@ -95,6 +98,9 @@ pub struct Machine {
     pub max_transition_jerk: Option<f64>,
     pub axes: [AxisLimits; 3],
     pub servo: [ServoParams; 3],
+    /// Block delete, optional stop, tool table, work offsets, home positions.
+    #[serde(default)]
+    pub nc: NcSetup,
 }
 
 impl Default for Machine {
@@ -118,6 +124,7 @@ impl Default for Machine {
                 ServoParams::default(),
                 ServoParams::default(),
             ],
+            nc: NcSetup::default(),
         }
     }
 }
@@ -169,6 +176,12 @@ pub struct MachineFile {
     pub max_transition_jerk_mm_s3: Option<f64>,
     pub axis: Option<AxesFile>,
     pub servo: Option<ServoFile>,
+    pub block_delete: Option<bool>,
+    pub optional_stop: Option<bool>,
+    pub cutter_corner: Option<CutterCorner>,
+    pub tool: Option<std::collections::BTreeMap<String, nc::ToolFile>>,
+    pub work_offset: Option<std::collections::BTreeMap<String, nc::PointFile>>,
+    pub home: Option<std::collections::BTreeMap<String, nc::PointFile>>,
 }
 
 /// One millimetre (m) and one mm/min (m/s): machine files and tests write their numbers in these.
@@ -245,6 +258,18 @@ impl Machine {
                     }
                 }
             }
+        }
+        m.nc.block_delete = f.block_delete.unwrap_or(true);
+        m.nc.optional_stop = f.optional_stop.unwrap_or(true);
+        m.nc.cutter_corner = f.cutter_corner.unwrap_or_default();
+        if let Some(t) = &f.tool {
+            m.nc.set_tools(t)?;
+        }
+        if let Some(w) = &f.work_offset {
+            m.nc.set_work_offsets(w)?;
+        }
+        if let Some(h) = &f.home {
+            m.nc.set_home(h)?;
         }
         if let Some(servo) = &f.servo {
             for (i, s) in [&servo.x, &servo.y, &servo.z].into_iter().enumerate() {

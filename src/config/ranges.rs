@@ -222,6 +222,13 @@ pub const SERVO: &[Range] = &[
     r("servo_rate_hz", "servoRate", 100.0, 1e5, 1.0, "Hz"),
 ];
 
+/// NC setup (`config::nc`): tool numbers `[tool.N]` 1 … MAX_TOOL (LinuxCNC allows pocket
+/// numbers well beyond a real magazine); tool radius 0 … 1000 mm; tool length, work offsets
+/// `[work_offset.*]` and home positions `[home.*]` within ±100 000 mm (the coordinate range).
+pub const MAX_TOOL: u32 = 9_999;
+pub const MAX_TOOL_RADIUS_M: f64 = 1.0;
+pub const MAX_OFFSET_M: f64 = 100.0;
+
 /// Largest |loadForce| input (N).
 pub const MAX_LOAD_FORCE_N: f64 = 1e7;
 

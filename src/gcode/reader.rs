@@ -1,9 +1,18 @@
 //! The streaming reader: a cursor into the program text and the modal state, one line at a time.
 
+mod comp;
+mod comp_geom;
+mod cycles;
+mod modal;
+mod offsets;
+mod words;
+
 use super::check;
+use super::params::Params;
 use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
-use super::words::{split, Word};
+use super::words::{split_with, Sets, Word};
 use super::{Block, Motion, PathMode, Plane, StopKind};
+use crate::config::{CutterCorner, NcSetup};
 use crate::error::ProgramError;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -57,11 +66,38 @@ pub struct Reader {
     /// Modal motion: 0, 1, 2, 3 (G0…G3), None before the first.
     motion: Option<u8>,
     done: bool,
-    /// A block decoded but not yet returned (a line can give a motion and a stop).
+    /// Switches, tool table, work offsets, home positions (machine file; G10 changes them).
+    #[serde(default)]
+    nc: Box<NcSetup>,
+    /// Outside-corner strategy of cutter compensation (G450 / G451, machine default).
+    #[serde(default)]
+    corner: CutterCorner,
+    /// T (selected), M6 (loaded) tool numbers; D radius register (m); tool length offset (m).
+    #[serde(default)]
+    tool: offsets::ToolState,
+    /// Active work system (0 = G54 … 8 = G59.3), G92 offset (m) and whether it is applied.
+    #[serde(default)]
+    work: usize,
+    #[serde(default)]
+    g92: Vec3,
+    #[serde(default)]
+    g92_on: bool,
+    /// Cutter compensation: mode, and the blocks held back for one block of look-ahead.
+    #[serde(default)]
+    comp: Box<comp::Comp>,
+    /// Drilling cycle words and retract mode.
+    #[serde(default)]
+    cycle: cycles::Cycle,
+    /// Blocks decoded but not yet returned (a line can give a motion and a stop, G28 two moves).
     #[serde(skip)]
-    pending: Option<Block>,
+    pending: std::collections::VecDeque<Block>,
     #[serde(skip)]
     words: Vec<Word>,
+    /// Numbered and named parameters (bounded), and the settings of the line being read.
+    #[serde(default)]
+    params: Box<Params>,
+    #[serde(skip)]
+    sets: Sets,
     #[serde(skip)]
     line_buf: Vec<u8>,
 }
@@ -72,6 +108,10 @@ struct LineCodes {
     motion: Option<(u8, u32)>,
     dwell: Option<u32>,
     stop: Option<(StopKind, u32)>,
+    tool_change: bool,
+    comp: Option<(i64, u32)>,
+    tlo: Option<(i64, u32)>,
+    nonmodal: Option<(i64, u32)>,
 }
 
 impl Reader {
@@ -95,8 +135,18 @@ impl Reader {
             plane: Plane::XY,
             motion: None,
             done: false,
-            pending: None,
+            nc: Box::default(),
+            corner: CutterCorner::Arc,
+            tool: offsets::ToolState::default(),
+            work: 0,
+            g92: [0.0; 3],
+            g92_on: false,
+            comp: Box::default(),
+            cycle: cycles::Cycle::default(),
+            pending: Default::default(),
             words: Vec::new(),
+            params: Box::default(),
+            sets: Vec::new(),
             line_buf: Vec::new(),
         }
     }
@@ -104,6 +154,14 @@ impl Reader {
     /// The absolute arc radius tolerance (m) for G21 programs (machine `arc_radius_tolerance_mm`).
     pub fn with_arc_tolerance(mut self, tolerance: f64) -> Reader {
         self.arc_tolerance = tolerance;
+        self
+    }
+
+    /// The machine's arc tolerance and NC setup (switches, tool table, offsets, home positions).
+    pub fn with_machine(mut self, machine: &crate::config::Machine) -> Reader {
+        self.arc_tolerance = machine.arc_radius_tolerance;
+        self.corner = machine.nc.cutter_corner;
+        self.nc = Box::new(machine.nc.clone());
         self
     }
 
@@ -128,7 +186,12 @@ impl Reader {
 
     /// Next block, `Ok(None)` at the end of the program (or after M2/M30).
     pub fn next_block(&mut self) -> Result<Option<Block>, ProgramError> {
-        if let Some(b) = self.pending.take() {
+        self.next_compensated()
+    }
+
+    /// Next block in machine coordinates before cutter compensation.
+    fn next_raw(&mut self) -> Result<Option<Block>, ProgramError> {
+        if let Some(b) = self.pending.pop_front() {
             return Ok(Some(b));
         }
         while !self.done {
@@ -146,7 +209,7 @@ impl Reader {
             if let Some(b) = block {
                 return Ok(Some(b));
             }
-            if let Some(b) = self.pending.take() {
+            if let Some(b) = self.pending.pop_front() {
                 return Ok(Some(b));
             }
         }
@@ -175,8 +238,25 @@ impl Reader {
             // A UTF-8 byte-order mark; columns count from after it, as editors show them.
             raw = raw.strip_prefix('\u{feff}').unwrap_or(raw);
         }
+        let deleted;
+        if raw.trim_start().starts_with('/') {
+            // Block delete (LinuxCNC "Block Delete"): with the switch on the line is skipped,
+            // with it off the '/' is ignored (a space keeps the columns).
+            if self.nc.block_delete {
+                return Ok(None);
+            }
+            deleted = raw.replacen('/', " ", 1);
+            raw = &deleted;
+        }
         let mut words = std::mem::take(&mut self.words);
-        let parsed = split(raw, &mut words).map_err(|e| self.error(line, e.col, e.message));
+        let mut sets = std::mem::take(&mut self.sets);
+        let parsed = split_with(raw, &mut words, &self.params, &mut sets)
+            .map_err(|e| self.error(line, e.col, e.message))
+            .and_then(|()| {
+                let set = self.params.set(&mut sets);
+                set.map_err(|(c, m)| self.error(line, c as u32 + 1, m))
+            });
+        self.sets = sets;
         let result = parsed.and_then(|()| self.execute(line, &words));
         self.words = words;
         result
@@ -185,46 +265,24 @@ impl Reader {
     /// Apply one line's words to the modal state; the block it makes, if any.
     fn execute(&mut self, line: u32, words: &[Word]) -> Result<Option<Block>, ProgramError> {
         let codes = self.modal_words(line, words)?;
-        let mut axes: [Option<(f64, u32)>; 3] = [None; 3];
-        let mut ijk: [Option<(f64, u32)>; 3] = [None; 3];
-        let (mut r, mut p) = (None, None);
-        for w in words {
-            let v = w.value;
-            let located = |m: String| self.error(line, w.col, m);
-            match w.letter {
-                b'X' | b'Y' | b'Z' => {
-                    let i = (w.letter - b'X') as usize;
-                    if axes[i].is_some() {
-                        return Err(self.error(line, w.col, format!("{} given twice", w.letter as char)));
-                    }
-                    check::length(w.letter, v, self.unit).map_err(located)?;
-                    axes[i] = Some((v, w.col));
-                }
-                b'I' | b'J' | b'K' | b'R' => {
-                    check::length(w.letter, v, self.unit).map_err(located)?;
-                    match w.letter {
-                        b'R' => r = Some((v, w.col)),
-                        l => ijk[(l - b'I') as usize] = Some((v, w.col)),
-                    }
-                }
-                b'P' => p = Some((v, w.col)),
-                b'F' => {
-                    // G94: units per minute.
-                    self.feed = check::feed(v, self.unit).map_err(located)?;
-                }
-                b'G' | b'M' | b'N' | b'S' | b'T' | b'H' | b'D' | b'Q' => {}
-                b'A' | b'B' | b'C' | b'U' | b'V' | b'W' => {
-                    let msg = format!(
-                        "unsupported axis word {} (only X, Y, Z are machine axes)",
-                        w.letter as char
-                    );
-                    return Err(self.error(line, w.col, msg));
-                }
-                other => {
-                    let msg = format!("unsupported word {}", other as char);
-                    return Err(self.error(line, w.col, msg));
-                }
-            }
+        let words::LineWords {
+            mut axes,
+            ijk,
+            mut r,
+            p,
+            extra,
+        } = self.read_words(line, words)?;
+        self.apply_tool(line, &codes, &extra, &mut axes)?;
+        if let Some((code, col)) = codes.comp {
+            self.set_comp(line, code, col, extra.d)?;
+        }
+        let non_modal = self.non_modal(line, &codes, &extra, p, r, &axes)?;
+        if non_modal == offsets::NonModal::Consumed {
+            // The words were data (G10 L1 R, G92 X…).
+            (axes, r) = ([None; 3], None);
+        }
+        if let offsets::NonModal::Home(i) = non_modal {
+            return self.go_home(line, i, &axes, &codes);
         }
         if let Some(col) = codes.dwell {
             let Some((seconds, pcol)) = p else {
@@ -244,15 +302,26 @@ impl Reader {
                 Some(m) => Some((m, axes.iter().flatten().map(|a| a.1).min().unwrap_or(1))),
                 None => {
                     let col = axes.iter().flatten().map(|a| a.1).min().unwrap_or(1);
-                    return Err(self.error(line, col, "axis words without a motion mode (G0, G1, G2, G3)"));
+                    return Err(self.error(
+                        line,
+                        col,
+                        "axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
+                    ));
                 }
             },
             None => None,
         };
         let mut block = None;
+        if let Some((m, col)) = motion.filter(|m| m.0 >= 73) {
+            let fresh = !matches!(self.motion, Some(73..));
+            self.motion = Some(m);
+            let xy = axes;
+            let (r, q) = (r, extra.q);
+            return self.canned(line, col, m, fresh, cycles::CycleWords { xy, r, p, q }, &codes);
+        }
         if let Some((m, col)) = motion {
             self.motion = Some(m);
-            let to = self.target(line, &axes)?;
+            let to = self.target(line, &axes, non_modal == offsets::NonModal::Machine)?;
             if m != 0 && self.feed <= 0.0 && (any_axis || m >= 2) {
                 return Err(self.error(line, col, format!("G{m} with no feed rate: F was never set")));
             }
@@ -281,12 +350,14 @@ impl Reader {
     }
 
     /// End point of a motion from the axis words (G90/G91), each within the coordinate range.
-    fn target(&self, line: u32, axes: &[Option<(f64, u32)>; 3]) -> Result<Vec3, ProgramError> {
+    fn target(&self, line: u32, axes: &[Option<(f64, u32)>; 3], machine: bool) -> Result<Vec3, ProgramError> {
         let mut to = self.position;
         for (i, a) in axes.iter().enumerate() {
             if let Some((v, c)) = a {
-                to[i] = if self.absolute {
+                to[i] = if machine {
                     v * self.unit
+                } else if self.absolute {
+                    v * self.unit + self.axis_offset(i)
                 } else {
                     self.position[i] + v * self.unit
                 };
@@ -304,10 +375,38 @@ impl Reader {
         Ok(to)
     }
 
+    /// G28 / G30 (LinuxCNC "G28, G28.1", "G30, G30.1"): a rapid to the programmed point if any,
+    /// then a rapid of the named axes (all without axis words) to the stored home position.
+    fn go_home(
+        &mut self,
+        line: u32,
+        i: usize,
+        axes: &[Option<(f64, u32)>; 3],
+        codes: &LineCodes,
+    ) -> Result<Option<Block>, ProgramError> {
+        let via = self.target(line, axes, false)?;
+        let none = axes.iter().all(Option::is_none);
+        let home: Vec3 = std::array::from_fn(|k| {
+            if none || axes[k].is_some() {
+                self.nc.home[i][k]
+            } else {
+                via[k]
+            }
+        });
+        let first = self.block(line, Motion::Rapid { to: via });
+        self.position = via;
+        let second = self.block(line, Motion::Rapid { to: home });
+        self.position = home;
+        self.motion = Some(0);
+        let second = self.with_stop(second, codes);
+        self.pending.push_front(second);
+        Ok(Some(first))
+    }
+
     /// A line with a motion and M0/M1/M2/M30: the motion first, the stop after it.
     fn with_stop(&mut self, block: Block, codes: &LineCodes) -> Block {
         if let Some((kind, _)) = codes.stop {
-            self.pending = Some(self.block(block.line, Motion::Stop(kind)));
+            self.pending.push_back(self.block(block.line, Motion::Stop(kind)));
             self.finish_on(kind);
         }
         block
@@ -448,134 +547,6 @@ impl Reader {
                 turns,
             },
         ))
-    }
-
-    /// G and M words: modal settings applied at once, motion / dwell / stop returned.
-    fn modal_words(&mut self, line: u32, words: &[Word]) -> Result<LineCodes, ProgramError> {
-        let mut codes = LineCodes::default();
-        // Modal groups seen on this line, to refuse two words of one group.
-        let mut groups: [Option<u32>; 8] = [None; 8];
-        let mut group = |g: usize, col: u32, this: &Reader| -> Result<(), ProgramError> {
-            if groups[g].is_some() {
-                return Err(this.error(line, col, "two words of the same modal group on one line"));
-            }
-            groups[g] = Some(col);
-            Ok(())
-        };
-        let (mut tolerance, mut q) = (None, None);
-        for w in words {
-            if w.letter == b'P' {
-                tolerance = Some(*w);
-            }
-            if w.letter == b'Q' {
-                q = Some(*w);
-            }
-        }
-        for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
-            // Codes with one decimal (G90.1); compare in tenths.
-            let code = (w.value * 10.0).round() as i64;
-            if ((w.value * 10.0) - code as f64).abs() > 1e-6 {
-                return Err(self.error(
-                    line,
-                    w.col,
-                    format!("unsupported {}{}", w.letter as char, w.value),
-                ));
-            }
-            let col = w.col;
-            if w.letter == b'M' {
-                match code {
-                    0 | 10 => {
-                        group(7, col, self)?;
-                        let kind = if code == 0 {
-                            StopKind::Pause
-                        } else {
-                            StopKind::OptionalPause
-                        };
-                        codes.stop = Some((kind, col));
-                    }
-                    20 | 300 => {
-                        group(7, col, self)?;
-                        codes.stop = Some((StopKind::End, col));
-                    }
-                    // Spindle, tool change, coolant, override switches: no motion.
-                    30 | 40 | 50 | 60 | 70 | 80 | 90 | 480 | 490 => {}
-                    _ => return Err(self.error(line, col, format!("unsupported M{}", fmt_code(code)))),
-                }
-                continue;
-            }
-            match code {
-                0 | 10 | 20 | 30 => {
-                    group(0, col, self)?;
-                    codes.motion = Some(((code / 10) as u8, col));
-                }
-                40 => {
-                    group(0, col, self)?;
-                    codes.dwell = Some(col);
-                }
-                170 | 180 | 190 => {
-                    group(1, col, self)?;
-                    self.plane = match code {
-                        170 => Plane::XY,
-                        180 => Plane::XZ,
-                        _ => Plane::YZ,
-                    };
-                }
-                200 | 210 => {
-                    group(2, col, self)?;
-                    self.unit = if code == 200 { 25.4e-3 } else { 1e-3 };
-                }
-                900 | 910 => {
-                    group(3, col, self)?;
-                    self.absolute = code == 900;
-                }
-                901 | 911 => {
-                    group(4, col, self)?;
-                    self.arc_absolute = code == 901;
-                }
-                610 | 611 => {
-                    group(5, col, self)?;
-                    self.path_mode = PathMode::ExactStop;
-                }
-                640 => {
-                    group(5, col, self)?;
-                    let metres = |w: Option<Word>| {
-                        w.map(|w| {
-                            check::blend_tolerance(w.letter, w.value, self.unit)
-                                .map_err(|m| self.error(line, w.col, m))
-                        })
-                        .transpose()
-                    };
-                    self.path_mode = PathMode::Blend {
-                        tolerance: metres(tolerance)?,
-                        q: metres(q)?,
-                    };
-                }
-                // Accepted, no effect on motion: cancel compensation / offsets / cycles, feed per
-                // minute, work offsets, spindle modes, canned-cycle return levels.
-                400 | 490 | 800 | 940 | 960 | 970 | 980 | 990 | 540 | 550 | 560 | 570 | 580 | 590 | 591
-                | 592 | 593 => {}
-                _ => {
-                    let what = match code {
-                        410 | 411 | 420 | 421 => " (cutter radius compensation)",
-                        430..=432 => " (tool length offset)",
-                        330 | 331 | 760 => " (spindle-synchronised motion)",
-                        50..=53 => " (splines)",
-                        100 => " (data setting)",
-                        280 | 281 | 300 | 301 | 530 | 920 | 921 | 922 | 923 => {
-                            " (coordinate system and homing)"
-                        }
-                        380..=389 => " (probing)",
-                        730 | 810..=890 => " (canned cycles)",
-                        930 => " (inverse-time feed)",
-                        950 => " (feed per revolution)",
-                        70 | 80 => " (lathe diameter mode)",
-                        _ => "",
-                    };
-                    return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
-                }
-            }
-        }
-        Ok(codes)
     }
 
     /// The absolute arc tolerance in force: the machine's for G21, 2.54 times it for G20

@@ -1,6 +1,8 @@
 //! One line of G-code → its words (letter, number, column). Comments `( )` and `;`, spaces inside
-//! numbers (as LinuxCNC allows), and the constructs we do not run (`#` parameters, `[ ]`
-//! expressions, O-words) reported with their column.
+//! numbers (as LinuxCNC allows); with `split_with`, `#` parameters and `[ ]` expressions
+//! evaluated (params.rs); O-words reported with their column.
+
+use super::params::{Expr, Key, Params, FUNCTIONS};
 
 /// A word: upper-case letter, its value, and the 1-based column of the letter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,7 +27,26 @@ fn err(col: usize, message: impl Into<String>) -> LexError {
 }
 
 /// Split a line into words, appending to `out` (cleared first). A `%` line has no words.
+/// Parameters and expressions are refused here; `split_with` evaluates them.
 pub fn split(line: &str, out: &mut Vec<Word>) -> Result<(), LexError> {
+    split_inner(line, out, None)
+}
+
+/// Parameter settings of a line: key, value, 0-based column.
+pub type Sets = Vec<(Key, f64, usize)>;
+
+/// `split` with parameters: `#1`, `#<name>` and `[...]` values are evaluated with `params`,
+/// settings `#n = value` collected in `sets` (applied by the caller after the line).
+pub fn split_with(line: &str, out: &mut Vec<Word>, params: &Params, sets: &mut Sets) -> Result<(), LexError> {
+    sets.clear();
+    split_inner(line, out, Some((params, sets)))
+}
+
+fn split_inner(
+    line: &str,
+    out: &mut Vec<Word>,
+    mut params: Option<(&Params, &mut Sets)>,
+) -> Result<(), LexError> {
     out.clear();
     let b = line.as_bytes();
     if line.trim_start().starts_with('%') {
@@ -44,7 +65,12 @@ pub fn split(line: &str, out: &mut Vec<Word>) -> Result<(), LexError> {
             b'/' if out.is_empty() => {
                 return Err(err(i, "unsupported block delete '/'"));
             }
-            b'#' => return Err(err(i, "unsupported # parameter (variables are not supported)")),
+            b'#' => {
+                let Some((p, sets)) = params.as_mut() else {
+                    return Err(err(i, "unsupported # parameter (variables are not supported)"));
+                };
+                i = setting(b, i, p, sets)?;
+            }
             b'[' => {
                 return Err(err(
                     i,
@@ -56,6 +82,17 @@ pub fn split(line: &str, out: &mut Vec<Word>) -> Result<(), LexError> {
                 let col = i;
                 i += 1;
                 let k = i + b[i..].iter().take_while(|&&x| x == b' ' || x == b'\t').count();
+                let letter = c.to_ascii_uppercase();
+                if let Some((p, _)) = params.as_ref().filter(|_| is_expression(b, k)) {
+                    let mut e = Expr::new(b, k, p);
+                    let value = e
+                        .primary()
+                        .map_err(|(at, m)| err(at, format!("{}: {m}", letter as char)))?;
+                    i = e.i;
+                    let col = col as u32 + 1;
+                    out.push(Word { letter, value, col });
+                    continue;
+                }
                 match b.get(k) {
                     Some(b'#') => {
                         return Err(err(k, "unsupported # parameter (variables are not supported)"))
@@ -82,6 +119,34 @@ pub fn split(line: &str, out: &mut Vec<Word>) -> Result<(), LexError> {
     Ok(())
 }
 
+/// A parameter setting `#key = value` starting at `i` (the `#`); the index after it.
+fn setting(b: &[u8], i: usize, params: &Params, sets: &mut Sets) -> Result<usize, LexError> {
+    let mut e = Expr::new(b, i + 1, params);
+    let key = e.key().map_err(|(c, m)| err(c, m))?;
+    if e.peek_byte() != Some(b'=') {
+        return Err(err(e.i, "expected '=' after the parameter (a parameter setting)"));
+    }
+    e.i += 1;
+    let v = e.primary().map_err(|(c, m)| err(c, m))?;
+    sets.push((key, v, i));
+    Ok(e.i)
+}
+
+/// A value that needs the evaluator: `#`, `[`, a function name, or a sign before them.
+fn is_expression(b: &[u8], k: usize) -> bool {
+    let mut k = k;
+    while k < b.len() && matches!(b[k], b' ' | b'\t' | b'-' | b'+') {
+        k += 1;
+    }
+    match b.get(k) {
+        Some(b'#') | Some(b'[') => true,
+        Some(c) if c.is_ascii_alphabetic() => FUNCTIONS
+            .iter()
+            .any(|f| b.len() >= k + f.len() && b[k..k + f.len()].eq_ignore_ascii_case(f.as_bytes())),
+        _ => false,
+    }
+}
+
 fn printable(line: &str, i: usize) -> String {
     line[i..]
         .chars()
@@ -91,7 +156,7 @@ fn printable(line: &str, i: usize) -> String {
 
 /// A real number starting at `i` (spaces allowed anywhere inside, as LinuxCNC does):
 /// optional sign, digits, optional point and digits; at least one digit.
-fn number(b: &[u8], mut i: usize) -> Result<(f64, usize), String> {
+pub(crate) fn number(b: &[u8], mut i: usize) -> Result<(f64, usize), String> {
     let mut text = String::with_capacity(16);
     let skip = |i: &mut usize| {
         while *i < b.len() && (b[*i] == b' ' || b[*i] == b'\t') {

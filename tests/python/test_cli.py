@@ -41,7 +41,9 @@ def test_run_pessoles_summary(cli):
 
 def test_bad_program_exit_2_with_location(cli, tmp_path):
     prog = tmp_path / "bad.ngc"
-    prog.write_text("G21 G90\nG1 X1 F100\nG41 D1 X2\n")
+    prog.write_text("G21 G90\nG1 X1 F100\nG33 Z-1 K1\n")
     res = run(cli, "run", str(prog))
     assert res.returncode == 2
-    assert res.stderr.strip() == f"{prog}:3:1: unsupported G41 (cutter radius compensation)"
+    assert res.stderr.strip() == (
+        f"{prog}:3:1: unsupported G33 (spindle-synchronised motion: this model has no spindle position to follow)"
+    )

@@ -10,7 +10,8 @@ import fmusim
 from conftest import CORPUS_PROGRAMS, ROOT
 
 REL = 1e-9
-PROGRAMS = [fmusim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS
+# Issue 14: seed 003's pocket with cutter compensation (G41.1 D5, G54, T/D/M6) through `program`.
+PROGRAMS = [fmusim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS + [ROOT / "examples" / "seed003_pocket_g41.ngc"]
 KINDS = fmusim.PROFILES
 
 
@@ -165,7 +166,7 @@ def test_feed_hold_stops_smoothly_stays_and_resumes(cnc):
 
 BAD = {
     "syntax": "G21 G90\nG1 X1 F100\nG1 X2 Y\n",
-    "g41": "G21 G90\nG1 X1 F100\nG41 D1 X2\n",
+    "g33": "G21 G90\nG1 X1 F100\nG33 Z-1 K1\n",
     "arc": "G21 G90 G17\nG1 X0 Y0 F100\nG2 X10 Y0 I1 J0\n",
 }
 
@@ -181,7 +182,7 @@ def test_bad_program_error_at_initialization(cnc, cli, tmp_path, case):
     m = re.match(re.escape(str(prog)) + r":(\d+):(\d+): (.*)", ref.stderr.strip())
     assert m, ref.stderr
     where, what = f"{m.group(1)}:{m.group(2)}", m.group(3)
-    if case == "g41":
+    if case == "g33":
         assert where == "3:1"
     s = fmusim.Slave(cnc, "bad")
     try:

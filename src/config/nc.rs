@@ -1,0 +1,161 @@
+//! The NC part of the machine file: switches (block delete, optional stop), the tool table, the
+//! work offsets G54…G59.3, the G28/G30 home positions and the cutter-compensation corner
+//! strategy. Lengths are read in mm and kept in metres.
+
+use super::ranges::RangeError;
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// How cutter radius compensation passes an outside (convex) corner.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CutterCorner {
+    /// A transition arc of the tool radius about the programmed corner (840D G450).
+    #[default]
+    Arc,
+    /// The offset elements extended along their tangents to their intersection; beyond a 90°
+    /// turn each is extended by the tool radius and the two ends joined by a line (G451; seed
+    /// 003's interpreted program).
+    Extension,
+}
+
+/// One tool of the table (m).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Tool {
+    pub radius: f64,
+    pub length: f64,
+}
+
+pub use super::ranges::{MAX_OFFSET_M, MAX_TOOL, MAX_TOOL_RADIUS_M};
+
+/// Names of the nine work coordinate systems, in order (G54 … G59.3).
+pub const WORK_SYSTEMS: [&str; 9] = [
+    "g54", "g55", "g56", "g57", "g58", "g59", "g59.1", "g59.2", "g59.3",
+];
+
+/// The machine's NC setup (SI).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct NcSetup {
+    /// `/` at the start of a line skips the line (true) or is ignored (false).
+    pub block_delete: bool,
+    /// M1 stops (true) or is ignored (false).
+    pub optional_stop: bool,
+    pub cutter_corner: CutterCorner,
+    pub tools: BTreeMap<u32, Tool>,
+    /// G54 … G59.3 offsets (m), machine = program + offset.
+    pub work_offsets: [Vec3; 9],
+    /// G28 and G30 home positions (m, machine coordinates).
+    pub home: [Vec3; 2],
+}
+
+impl Default for NcSetup {
+    fn default() -> Self {
+        NcSetup {
+            block_delete: true,
+            optional_stop: true,
+            cutter_corner: CutterCorner::Arc,
+            tools: BTreeMap::new(),
+            work_offsets: [[0.0; 3]; 9],
+            home: [[0.0; 3]; 2],
+        }
+    }
+}
+
+/// `[tool.N]` as written.
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToolFile {
+    pub radius_mm: Option<f64>,
+    pub length_mm: Option<f64>,
+}
+
+/// `[work_offset.g54]`, `[home.g28]`: a position in mm.
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointFile {
+    pub x_mm: Option<f64>,
+    pub y_mm: Option<f64>,
+    pub z_mm: Option<f64>,
+}
+
+fn range_error(key: String, message: String) -> RangeError {
+    RangeError { key, message }
+}
+
+fn length(key: String, v: f64, max: f64, min: f64) -> Result<f64, RangeError> {
+    let m = v * 1e-3;
+    if m.is_finite() && m >= min && m <= max {
+        Ok(m)
+    } else {
+        let message = format!("{key} = {v} out of range ({} … {} mm)", min * 1e3, max * 1e3);
+        Err(range_error(key, message))
+    }
+}
+
+fn point(prefix: &str, p: &PointFile) -> Result<Vec3, RangeError> {
+    let mut out = [0.0; 3];
+    for (i, (v, name)) in [p.x_mm, p.y_mm, p.z_mm]
+        .iter()
+        .zip(["x_mm", "y_mm", "z_mm"])
+        .enumerate()
+    {
+        if let Some(v) = v {
+            out[i] = length(format!("{prefix}.{name}"), *v, MAX_OFFSET_M, -MAX_OFFSET_M)?;
+        }
+    }
+    Ok(out)
+}
+
+impl NcSetup {
+    /// The tool table from `[tool.N]`: N a whole number 1 … MAX_TOOL, radius 0 … 1000 mm,
+    /// |length| ≤ 100 000 mm.
+    pub fn set_tools(&mut self, tools: &BTreeMap<String, ToolFile>) -> Result<(), RangeError> {
+        for (name, t) in tools {
+            let key = format!("tool.{name}");
+            let n: u32 = match name.parse() {
+                Ok(n) if (1..=MAX_TOOL).contains(&n) => n,
+                _ => {
+                    let m = format!("{key}: the tool number must be a whole number 1 … {MAX_TOOL}");
+                    return Err(range_error(key, m));
+                }
+            };
+            let radius = t.radius_mm.map_or(Ok(0.0), |v| {
+                length(format!("{key}.radius_mm"), v, MAX_TOOL_RADIUS_M, 0.0)
+            })?;
+            let length = t.length_mm.map_or(Ok(0.0), |v| {
+                length(format!("{key}.length_mm"), v, MAX_OFFSET_M, -MAX_OFFSET_M)
+            })?;
+            self.tools.insert(n, Tool { radius, length });
+        }
+        Ok(())
+    }
+
+    /// Work offsets `[work_offset.g54]` … `[work_offset."g59.3"]`, each axis within ±100 000 mm.
+    pub fn set_work_offsets(&mut self, offsets: &BTreeMap<String, PointFile>) -> Result<(), RangeError> {
+        for (name, p) in offsets {
+            let key = format!("work_offset.{name}");
+            let Some(i) = WORK_SYSTEMS.iter().position(|s| s.eq_ignore_ascii_case(name)) else {
+                let m = format!("{key}: not a work coordinate system (g54 … g59, g59.1 … g59.3)");
+                return Err(range_error(key, m));
+            };
+            self.work_offsets[i] = point(&key, p)?;
+        }
+        Ok(())
+    }
+
+    /// Home positions `[home.g28]`, `[home.g30]` (machine coordinates, ±100 000 mm).
+    pub fn set_home(&mut self, home: &BTreeMap<String, PointFile>) -> Result<(), RangeError> {
+        for (name, p) in home {
+            let key = format!("home.{name}");
+            let i = match name.to_ascii_lowercase().as_str() {
+                "g28" => 0,
+                "g30" => 1,
+                _ => return Err(range_error(key.clone(), format!("{key}: not g28 or g30"))),
+            };
+            self.home[i] = point(&key, p)?;
+        }
+        Ok(())
+    }
+}

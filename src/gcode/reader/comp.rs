@@ -1,0 +1,354 @@
+//! Cutter radius compensation G41/G42/G40, G41.1/G42.1 (LinuxCNC G-code reference "G40",
+//! "G41, G42", "G41.1, G42.1"; Siemens 840D G450/G451), on the reader's machine-coordinate
+//! blocks with one element of look-ahead: an element is emitted once the next one fixes its
+//! corner. Entry: the G41/G42 move (a line) ends on the offset start of the next element,
+//! perpendicular to it; exit: the last element ends perpendicular at its end, then the G40 move
+//! goes to its programmed point. Inside corners: intersection of the offset elements; outside
+//! corners: a transition arc about the corner (G450) or the tangents extended (G451).
+
+use super::comp_geom::{add, cross, dist, dot, intersect, Curve, Elem, P2};
+use super::{plane_axes, Reader};
+use crate::config::CutterCorner;
+use crate::error::ProgramError;
+use crate::gcode::{check, Block, Motion, Plane, StopKind};
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+use std::collections::VecDeque;
+
+/// Most blocks without motion in the plane (Z moves, dwells, stops) held while compensating.
+const MAX_DEFERRED: usize = 64;
+const EPS: f64 = 1e-9;
+
+/// Compensation mode and the blocks held for the look-ahead (bounded: one element, one entry
+/// move, at most MAX_DEFERRED blocks between).
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Comp {
+    /// +1 G41 (tool left of the path), −1 G42, 0 G40.
+    side: f64,
+    /// Side of the held element (G40 may have come since).
+    held_side: f64,
+    held_radius: f64,
+    radius: f64,
+    plane: Plane,
+    entry: Option<Block>,
+    held: Option<Block>,
+    deferred: Vec<Block>,
+    out: VecDeque<Block>,
+    tool: Vec3,
+    finished: bool,
+}
+
+impl Reader {
+    /// G40 / G41 / G42 (D: tool number, radius from the table) / G41.1 / G42.1 (D: the radius).
+    pub(super) fn set_comp(
+        &mut self,
+        line: u32,
+        code: i64,
+        col: u32,
+        d: Option<(f64, u32)>,
+    ) -> Result<(), ProgramError> {
+        if code == 400 {
+            self.comp.side = 0.0;
+            return Ok(());
+        }
+        let side = if code == 410 || code == 411 { 1.0 } else { -1.0 };
+        let radius = if code == 411 || code == 421 {
+            let Some((v, c)) = d else {
+                return Err(self.error(line, col, "G41.1/G42.1 needs D (the tool radius)"));
+            };
+            if v < 0.0 {
+                return Err(self.error(line, c, "D (tool radius) must not be negative"));
+            }
+            check::length(b'D', v, self.unit).map_err(|m| self.error(line, c, m))?
+        } else {
+            // D (LinuxCNC: the tool number; 840D: the loaded tool's edge), else the loaded tool.
+            let n = self.tool.d.unwrap_or(self.tool.loaded);
+            let at = d.map_or(col, |(_, c)| c);
+            self.tool_entry(line, 'D', (n as f64, at))?.radius
+        };
+        if self.comp.side != 0.0 && (self.comp.side != side || self.comp.radius != radius) {
+            let m = "cutter compensation is already on: cancel it with G40 before changing side or radius";
+            return Err(self.error(line, col, m));
+        }
+        self.comp.side = side;
+        self.comp.radius = radius;
+        self.comp.plane = self.plane;
+        Ok(())
+    }
+
+    /// Next block after cutter compensation.
+    pub(super) fn next_compensated(&mut self) -> Result<Option<Block>, ProgramError> {
+        loop {
+            if let Some(b) = self.comp.out.pop_front() {
+                return Ok(Some(b));
+            }
+            if self.comp.finished {
+                return Ok(None);
+            }
+            let idle = self.comp.entry.is_none() && self.comp.held.is_none();
+            match self.next_raw()? {
+                Some(b) if idle && self.comp.side == 0.0 => return Ok(Some(b)),
+                Some(b) => self.compensate(b)?,
+                None => {
+                    self.finish_held()?;
+                    self.comp.finished = true;
+                }
+            }
+        }
+    }
+
+    fn compensate(&mut self, b: Block) -> Result<(), ProgramError> {
+        let (a, bb, _) = plane_axes(self.comp.plane);
+        let Some(elem) = Elem::of(&b, a, bb) else {
+            if matches!(b.motion, Motion::Stop(StopKind::End)) {
+                self.finish_held()?;
+                self.emit(b, None);
+            } else if self.comp.entry.is_some() || self.comp.held.is_some() {
+                if self.comp.deferred.len() >= MAX_DEFERRED {
+                    let m = format!(
+                        "more than {MAX_DEFERRED} blocks without motion in the plane while compensating"
+                    );
+                    return Err(self.error(b.line, 1, m));
+                }
+                self.comp.deferred.push(b);
+            } else {
+                self.comp.tool = b.from;
+                self.emit(b, None);
+            }
+            return Ok(());
+        };
+        if self.comp.side != 0.0 && self.plane != self.comp.plane {
+            return Err(self.error(
+                b.line,
+                1,
+                "the plane changed while cutter compensation is on (G40 first)",
+            ));
+        }
+        let (side, r) = (self.comp.side, self.comp.radius);
+        if side != 0.0 {
+            if let Some(rr) = elem.offset_radius(side, r) {
+                if rr <= EPS {
+                    let Elem::Arc { radius, .. } = elem else {
+                        unreachable!()
+                    };
+                    let m = format!(
+                        "arc radius {:.4} mm is smaller than the tool radius {:.4} mm on this side (gouge)",
+                        radius * 1e3,
+                        r * 1e3
+                    );
+                    return Err(self.error(b.line, 1, m));
+                }
+            }
+        }
+        if let Some(entry) = self.comp.entry.take() {
+            if side == 0.0 {
+                self.emit(entry, None);
+                self.flush_deferred();
+                self.emit_plain(b);
+            } else {
+                let s2 = elem.offset_point(elem.start(), side, r);
+                self.emit(entry, Some(s2));
+                self.flush_deferred();
+                self.comp.held = Some(b);
+                (self.comp.held_side, self.comp.held_radius) = (side, r);
+            }
+        } else if let Some(held) = self.comp.held.take() {
+            if side == 0.0 {
+                if matches!(b.motion, Motion::Arc { .. }) {
+                    return Err(self.error(b.line, 1, "the G40 exit move must be a straight line (G0/G1)"));
+                }
+                self.end_held(held, None);
+                self.flush_deferred();
+                self.emit_plain(b);
+            } else {
+                self.corner(held, b, elem)?;
+            }
+        } else if side != 0.0 {
+            if matches!(b.motion, Motion::Arc { .. }) {
+                return Err(self.error(
+                    b.line,
+                    1,
+                    "the G41/G42 entry move must be a straight line (G0/G1)",
+                ));
+            }
+            self.comp.tool = b.from;
+            self.comp.entry = Some(b);
+        } else {
+            self.emit_plain(b);
+        }
+        Ok(())
+    }
+
+    /// The corner between the held element and the next one `next` (its plane element `e2`).
+    fn corner(&mut self, held: Block, next: Block, e2: Elem) -> Result<(), ProgramError> {
+        let (a, b, _) = plane_axes(self.comp.plane);
+        let (side, r) = (self.comp.side, self.comp.radius);
+        let e1 = Elem::of(&held, a, b).expect("held blocks move in the plane");
+        let c = e1.end();
+        let (t1, t2) = (e1.tangent(c), e2.tangent(c));
+        let (p1, p2) = (e1.offset_point(c, side, r), e2.offset_point(c, side, r));
+        let turn = cross(t1, t2);
+        if dist(p1, p2) < EPS {
+            self.end_held(held, Some(p1));
+        } else if side * turn > 0.0 && turn.abs() > EPS {
+            let curve = |e: &Elem, t: P2, p: P2| match e.offset_radius(side, r) {
+                None => Curve::Line(p, t),
+                Some(rr) => match *e {
+                    Elem::Arc { center, .. } => Curve::Circle(center, rr),
+                    Elem::Line { .. } => unreachable!(),
+                },
+            };
+            let mid = [(p1[0] + p2[0]) / 2.0, (p1[1] + p2[1]) / 2.0];
+            let x = intersect(&curve(&e1, t1, p1), &curve(&e2, t2, p2), mid);
+            let start1 = self.plane_of(self.comp.tool);
+            let end2 = e2.offset_point(e2.end(), side, r);
+            let reachable = x.filter(|x| e1.runs_forward(start1, *x) && e2.runs_forward(*x, end2));
+            let Some(x) = reachable else {
+                let m = format!(
+                    "concave corner cannot be reached by the tool (radius {:.4} mm): the offset elements do not meet (gouge)",
+                    r * 1e3
+                );
+                return Err(self.error(next.line, 1, m));
+            };
+            self.end_held(held, Some(x));
+        } else {
+            self.outside_corner(held, &e1, &e2, c, p1, p2);
+        }
+        self.flush_deferred();
+        self.comp.held = Some(next);
+        (self.comp.held_side, self.comp.held_radius) = (side, r);
+        Ok(())
+    }
+
+    /// An outside corner: transition arc (G450) or extended tangents (G451).
+    fn outside_corner(&mut self, held: Block, e1: &Elem, e2: &Elem, c: P2, p1: P2, p2: P2) {
+        let (side, r) = (self.comp.side, self.comp.radius);
+        let (t1, t2) = (e1.tangent(c), e2.tangent(c));
+        let piece = |reader: &Reader, motion: Motion| Block {
+            motion,
+            ..reader.piece_of(&held)
+        };
+        // A rapid has no programmed feed for an arc: its outside corners are extended lines.
+        let rapid = matches!(held.motion, Motion::Rapid { .. });
+        if self.corner == CutterCorner::Arc && !rapid {
+            self.end_held(held, Some(p1));
+            let (a, b, _) = plane_axes(self.comp.plane);
+            let mut center = [0.0; 3];
+            center[a] = c[0];
+            center[b] = c[1];
+            let to = self.point3(p2);
+            let arc = Motion::Arc {
+                to,
+                center,
+                plane: self.comp.plane,
+                clockwise: side > 0.0,
+                turns: 0,
+            };
+            let blk = piece(self, arc);
+            self.emit(blk, None);
+            return;
+        }
+        let (ea, eb) = if dot(t1, t2) >= 0.0 {
+            let x = intersect(&Curve::Line(p1, t1), &Curve::Line(p2, t2), c).unwrap_or(p1);
+            (x, x)
+        } else {
+            (add(p1, t1, r), add(p2, t2, -r))
+        };
+        let is_line = |e: &Elem| matches!(e, Elem::Line { .. });
+        let line_to = |reader: &mut Reader, p: P2| {
+            if dist(reader.plane_of(reader.comp.tool), p) > EPS {
+                let to = reader.point3(p);
+                let m = match held.motion {
+                    Motion::Rapid { .. } => Motion::Rapid { to },
+                    _ => Motion::Linear { to },
+                };
+                let blk = piece(reader, m);
+                reader.emit(blk, None);
+            }
+        };
+        if is_line(e1) {
+            self.end_held(held, Some(ea));
+        } else {
+            self.end_held(held, Some(p1));
+            line_to(self, ea);
+        }
+        line_to(self, eb);
+        if !is_line(e2) {
+            line_to(self, p2);
+        }
+    }
+
+    /// In-plane coordinates of a point.
+    fn plane_of(&self, p: Vec3) -> P2 {
+        let (a, b, _) = plane_axes(self.comp.plane);
+        [p[a], p[b]]
+    }
+
+    /// The tool position with the in-plane coordinates `p`.
+    fn point3(&self, p: P2) -> Vec3 {
+        let (a, b, _) = plane_axes(self.comp.plane);
+        let mut q = self.comp.tool;
+        q[a] = p[0];
+        q[b] = p[1];
+        q
+    }
+
+    /// A corner piece of `held`'s line, feed and path mode.
+    fn piece_of(&self, held: &Block) -> Block {
+        Block {
+            motion: Motion::Stop(StopKind::Pause),
+            from: self.comp.tool,
+            ..*held
+        }
+    }
+
+    /// Queue `b` from the tool position, its in-plane end moved to `to` if given.
+    fn emit(&mut self, mut b: Block, to: Option<P2>) {
+        let (a, bb, _) = plane_axes(self.comp.plane);
+        b.from = self.comp.tool;
+        if let Motion::Rapid { to: end } | Motion::Linear { to: end } | Motion::Arc { to: end, .. } =
+            &mut b.motion
+        {
+            if let Some(p) = to {
+                end[a] = p[0];
+                end[bb] = p[1];
+            }
+            self.comp.tool = *end;
+        }
+        self.comp.out.push_back(b);
+    }
+
+    /// An uncompensated block from the tool position to its programmed end.
+    fn emit_plain(&mut self, b: Block) {
+        self.emit(b, None);
+    }
+
+    /// Emit the held element ending at `end` (None: perpendicular offset of its end).
+    fn end_held(&mut self, held: Block, end: Option<P2>) {
+        let (a, b, _) = plane_axes(self.comp.plane);
+        let e = Elem::of(&held, a, b).expect("held blocks move in the plane");
+        let end = end.unwrap_or_else(|| e.offset_point(e.end(), self.comp.held_side, self.comp.held_radius));
+        self.emit(held, Some(end));
+    }
+
+    /// Blocks without motion in the plane, held while the corner was open: at the tool's place.
+    fn flush_deferred(&mut self) {
+        let tool = self.plane_of(self.comp.tool);
+        for b in std::mem::take(&mut self.comp.deferred) {
+            self.emit(b, Some(tool));
+        }
+    }
+
+    /// At the end of the program (M2/M30 or the last line): the held element ends
+    /// perpendicular, the entry move as programmed.
+    fn finish_held(&mut self) -> Result<(), ProgramError> {
+        if let Some(entry) = self.comp.entry.take() {
+            self.emit(entry, None);
+        }
+        if let Some(held) = self.comp.held.take() {
+            self.end_held(held, None);
+        }
+        self.flush_deferred();
+        Ok(())
+    }
+}

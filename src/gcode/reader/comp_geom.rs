@@ -1,0 +1,223 @@
+//! Plane geometry of cutter compensation: offset elements (lines and arcs in the active plane)
+//! and their intersections. Points are (a, b) in the plane's axes (`plane_axes`).
+
+use crate::gcode::{Block, Motion};
+
+pub type P2 = [f64; 2];
+
+pub fn sub(p: P2, q: P2) -> P2 {
+    [p[0] - q[0], p[1] - q[1]]
+}
+pub fn add(p: P2, q: P2, s: f64) -> P2 {
+    [p[0] + s * q[0], p[1] + s * q[1]]
+}
+pub fn dot(p: P2, q: P2) -> f64 {
+    p[0] * q[0] + p[1] * q[1]
+}
+pub fn cross(p: P2, q: P2) -> f64 {
+    p[0] * q[1] - p[1] * q[0]
+}
+pub fn norm(p: P2) -> f64 {
+    p[0].hypot(p[1])
+}
+pub fn dist(p: P2, q: P2) -> f64 {
+    norm(sub(p, q))
+}
+/// Left normal of a unit tangent.
+pub fn left(t: P2) -> P2 {
+    [-t[1], t[0]]
+}
+
+/// A programmed element in the plane: a line or an arc (centre, radius, clockwise).
+#[derive(Clone, Copy, Debug)]
+pub enum Elem {
+    Line {
+        start: P2,
+        end: P2,
+    },
+    Arc {
+        start: P2,
+        end: P2,
+        center: P2,
+        radius: f64,
+        cw: bool,
+    },
+}
+
+impl Elem {
+    /// The element of a motion block in the plane of axes (a, b); None if it does not move there.
+    pub fn of(block: &Block, a: usize, b: usize) -> Option<Elem> {
+        let s = [block.from[a], block.from[b]];
+        match block.motion {
+            Motion::Rapid { to } | Motion::Linear { to } => {
+                let e = [to[a], to[b]];
+                (dist(s, e) > 1e-9).then_some(Elem::Line { start: s, end: e })
+            }
+            Motion::Arc {
+                to,
+                center,
+                clockwise,
+                ..
+            } => {
+                let c = [center[a], center[b]];
+                Some(Elem::Arc {
+                    start: s,
+                    end: [to[a], to[b]],
+                    center: c,
+                    radius: dist(s, c),
+                    cw: clockwise,
+                })
+            }
+            _ => None,
+        }
+    }
+
+    pub fn start(&self) -> P2 {
+        match *self {
+            Elem::Line { start, .. } | Elem::Arc { start, .. } => start,
+        }
+    }
+
+    pub fn end(&self) -> P2 {
+        match *self {
+            Elem::Line { end, .. } | Elem::Arc { end, .. } => end,
+        }
+    }
+
+    /// Unit tangent at point `p` of the element (direction of travel).
+    pub fn tangent(&self, p: P2) -> P2 {
+        match *self {
+            Elem::Line { start, end } => {
+                let d = sub(end, start);
+                let l = norm(d);
+                [d[0] / l, d[1] / l]
+            }
+            Elem::Arc { center, cw, .. } => {
+                let r = sub(p, center);
+                let l = norm(r);
+                let t = [-r[1] / l, r[0] / l];
+                if cw {
+                    [-t[0], -t[1]]
+                } else {
+                    t
+                }
+            }
+        }
+    }
+
+    /// Radius of the offset arc, `side` +1 (G41, tool left) or −1 (G42); None for a line.
+    pub fn offset_radius(&self, side: f64, r: f64) -> Option<f64> {
+        match *self {
+            Elem::Line { .. } => None,
+            Elem::Arc { radius, cw, .. } => Some(radius + side * r * if cw { 1.0 } else { -1.0 }),
+        }
+    }
+
+    /// The offset of point `p` (start or end) of the element.
+    pub fn offset_point(&self, p: P2, side: f64, r: f64) -> P2 {
+        add(p, left(self.tangent(p)), side * r)
+    }
+}
+
+impl Elem {
+    /// Whether the offset element from `p` to `q` runs the programmed way and no longer than
+    /// the programmed element: a line not reversed, an arc not swept beyond its own angle (a
+    /// concave corner eating the whole element is a gouge).
+    pub fn runs_forward(&self, p: P2, q: P2) -> bool {
+        match *self {
+            Elem::Line { .. } => dot(sub(q, p), self.tangent(p)) > EPS,
+            Elem::Arc {
+                start,
+                end,
+                center,
+                cw,
+                ..
+            } => {
+                let full = sweep(center, start, end, cw);
+                full < EPS || sweep(center, p, q, cw) <= full + 1e-9
+            }
+        }
+    }
+}
+
+const EPS: f64 = 1e-9;
+
+/// Angle swept from `p` to `q` about `c` (0 … 2π), clockwise or not.
+fn sweep(c: P2, p: P2, q: P2, cw: bool) -> f64 {
+    let a = (p[1] - c[1]).atan2(p[0] - c[0]);
+    let b = (q[1] - c[1]).atan2(q[0] - c[0]);
+    let s = if cw { a - b } else { b - a };
+    s.rem_euclid(std::f64::consts::TAU)
+}
+
+/// Intersections of two offset elements (line through `p` along `t`, or circle `c`, `radius`).
+pub enum Curve {
+    Line(P2, P2),
+    Circle(P2, f64),
+}
+
+/// The intersection of two offset curves nearest to `near`, if any.
+pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
+    let points: Vec<P2> = match (c1, c2) {
+        (Curve::Line(p, t), Curve::Line(q, u)) => {
+            let den = cross(*t, *u);
+            if den.abs() < 1e-12 {
+                return None;
+            }
+            let s = cross(sub(*q, *p), *u) / den;
+            vec![add(*p, *t, s)]
+        }
+        (Curve::Line(p, t), Curve::Circle(c, r)) | (Curve::Circle(c, r), Curve::Line(p, t)) => {
+            let f = sub(*p, *c);
+            let b = dot(f, *t);
+            let disc = b * b - (dot(f, f) - r * r);
+            if disc < -1e-12 {
+                return None;
+            }
+            let h = disc.max(0.0).sqrt();
+            vec![add(*p, *t, -b - h), add(*p, *t, -b + h)]
+        }
+        (Curve::Circle(c1, r1), Curve::Circle(c2, r2)) => {
+            let d = dist(*c1, *c2);
+            if d < 1e-12 || d > r1 + r2 + 1e-9 || d < (r1 - r2).abs() - 1e-9 {
+                return None;
+            }
+            let x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
+            let h = (r1 * r1 - x * x).max(0.0).sqrt();
+            let u = [(c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d];
+            let m = add(*c1, u, x);
+            vec![add(m, left(u), h), add(m, left(u), -h)]
+        }
+    };
+    points
+        .into_iter()
+        .min_by(|p, q| dist(*p, near).total_cmp(&dist(*q, near)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offset_elements_run_forward_only_within_their_element() {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let arc = Elem::Arc {
+            start: [1.0, 0.0],
+            end: [0.0, 1.0],
+            center: [0.0, 0.0],
+            radius: 1.0,
+            cw: false,
+        };
+        assert!(arc.runs_forward([2.0, 0.0], [2.0 * h, 2.0 * h]));
+        // Starting before the arc's start: the offset would sweep more than the quarter.
+        assert!(!arc.runs_forward([h, -h], [0.0, 1.0]));
+        let line = Elem::Line {
+            start: [0.0, 0.0],
+            end: [1.0, 0.0],
+        };
+        assert!(line.runs_forward([0.0, 1.0], [0.5, 1.0]) && !line.runs_forward([0.5, 1.0], [0.2, 1.0]));
+        // G41 on a counter-clockwise arc: the tool inside, radius R − r; a line's offset is beside it.
+        assert_eq!(arc.offset_radius(1.0, 0.25), Some(0.75));
+        assert_eq!(line.offset_point([1.0, 0.0], -1.0, 0.5), [1.0, -0.5]);
+    }
+}

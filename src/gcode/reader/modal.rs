@@ -1,0 +1,172 @@
+//! The G and M words of a line: modal settings applied at once, motion / dwell / stop and the
+//! non-modal codes (G10, G28, G30, G53, G92) returned for `execute`.
+
+use super::{fmt_code, LineCodes, Reader};
+use crate::config::CutterCorner;
+use crate::error::ProgramError;
+use crate::gcode::check;
+use crate::gcode::words::Word;
+use crate::gcode::{PathMode, Plane, StopKind};
+
+impl Reader {
+    /// G and M words: modal settings applied at once, motion / dwell / stop returned.
+    pub(super) fn modal_words(&mut self, line: u32, words: &[Word]) -> Result<LineCodes, ProgramError> {
+        let mut codes = LineCodes::default();
+        // Modal groups seen on this line, to refuse two words of one group.
+        let mut groups: [Option<u32>; 12] = [None; 12];
+        let mut group = |g: usize, col: u32, this: &Reader| -> Result<(), ProgramError> {
+            if groups[g].is_some() {
+                return Err(this.error(line, col, "two words of the same modal group on one line"));
+            }
+            groups[g] = Some(col);
+            Ok(())
+        };
+        for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
+            // Codes with one decimal (G90.1); compare in tenths.
+            let code = (w.value * 10.0).round() as i64;
+            if ((w.value * 10.0) - code as f64).abs() > 1e-6 {
+                return Err(self.error(
+                    line,
+                    w.col,
+                    format!("unsupported {}{}", w.letter as char, w.value),
+                ));
+            }
+            let col = w.col;
+            if w.letter == b'M' {
+                self.m_code(line, code, col, &mut codes)?;
+                continue;
+            }
+            match code {
+                0 | 10 | 20 | 30 | 730 | 810 | 820 | 830 => {
+                    group(0, col, self)?;
+                    codes.motion = Some(((code / 10) as u8, col));
+                }
+                40 => {
+                    group(0, col, self)?;
+                    codes.dwell = Some(col);
+                }
+                170 | 180 | 190 => {
+                    group(1, col, self)?;
+                    self.plane = match code {
+                        170 => Plane::XY,
+                        180 => Plane::XZ,
+                        _ => Plane::YZ,
+                    };
+                }
+                200 | 210 => {
+                    group(2, col, self)?;
+                    self.unit = if code == 200 { 25.4e-3 } else { 1e-3 };
+                }
+                900 | 910 => {
+                    group(3, col, self)?;
+                    self.absolute = code == 900;
+                }
+                901 | 911 => {
+                    group(4, col, self)?;
+                    self.arc_absolute = code == 901;
+                }
+                610 | 611 => {
+                    group(5, col, self)?;
+                    self.path_mode = PathMode::ExactStop;
+                }
+                640 => {
+                    group(5, col, self)?;
+                    self.path_mode = self.blend_mode(line, words)?;
+                }
+                c if setup_group(c).is_some() => {
+                    group(setup_group(c).unwrap_or(0), col, self)?;
+                    self.setup_code(code, col, &mut codes);
+                }
+                // Accepted, no effect on motion: cancel cycles, feed per minute, spindle modes,
+                // canned-cycle return levels.
+                800 => self.motion = None,
+                980 | 990 => self.set_retract_to_r(code == 990),
+                940 | 960 | 970 => {}
+                _ => {
+                    let what = unsupported_reason(code);
+                    return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
+                }
+            }
+        }
+        Ok(codes)
+    }
+
+    /// G64 [P tolerance] [Q merge tolerance] (LinuxCNC "G64").
+    fn blend_mode(&self, line: u32, words: &[Word]) -> Result<PathMode, ProgramError> {
+        let last = |letter: u8| words.iter().rev().find(|w| w.letter == letter).copied();
+        let metres = |w: Option<Word>| {
+            w.map(|w| {
+                check::blend_tolerance(w.letter, w.value, self.unit).map_err(|m| self.error(line, w.col, m))
+            })
+            .transpose()
+        };
+        Ok(PathMode::Blend {
+            tolerance: metres(last(b'P'))?,
+            q: metres(last(b'Q'))?,
+        })
+    }
+
+    /// Cutter compensation, tool length, work system, non-modal and G450/G451 codes.
+    fn setup_code(&mut self, code: i64, col: u32, codes: &mut LineCodes) {
+        match code {
+            400 | 410 | 411 | 420 | 421 => codes.comp = Some((code, col)),
+            430 | 431 | 490 => codes.tlo = Some((code, col)),
+            591..=593 => self.work = (code - 585) as usize,
+            540..=590 => self.work = ((code - 540) / 10) as usize,
+            4500 => self.corner = CutterCorner::Arc,
+            4510 => self.corner = CutterCorner::Extension,
+            _ => codes.nonmodal = Some((code, col)),
+        }
+    }
+
+    /// M0/M1/M2/M30 (one of them a line), M6, and the M codes that do not move.
+    fn m_code(&self, line: u32, code: i64, col: u32, codes: &mut LineCodes) -> Result<(), ProgramError> {
+        let stop = match code {
+            10 if !self.nc.optional_stop => None,
+            0 => Some(StopKind::Pause),
+            10 => Some(StopKind::OptionalPause),
+            20 | 300 => Some(StopKind::End),
+            60 => {
+                codes.tool_change = true;
+                None
+            }
+            // Spindle, coolant, override switches: no motion.
+            30 | 40 | 50 | 70 | 80 | 90 | 480 | 490 => None,
+            _ => return Err(self.error(line, col, format!("unsupported M{}", fmt_code(code)))),
+        };
+        if let Some(kind) = stop {
+            if codes.stop.is_some() {
+                return Err(self.error(line, col, "two words of the same modal group on one line"));
+            }
+            codes.stop = Some((kind, col));
+        }
+        Ok(())
+    }
+}
+
+/// The modal group (index into the line's groups) of a setup code, None for the others.
+fn setup_group(code: i64) -> Option<usize> {
+    match code {
+        400 | 410 | 411 | 420 | 421 => Some(6),
+        430 | 431 | 490 => Some(8),
+        540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Some(9),
+        100 | 280 | 281 | 300 | 301 | 530 | 920..=923 => Some(10),
+        4500 | 4510 => Some(11),
+        _ => None,
+    }
+}
+
+/// Why a G code is refused (appended to "unsupported Gn").
+fn unsupported_reason(code: i64) -> &'static str {
+    match code {
+        432 => " (tool length offset from a second tool)",
+        330 | 331 | 760 => " (spindle-synchronised motion: this model has no spindle position to follow)",
+        50..=53 => " (splines)",
+        380..=389 => " (probing)",
+        840..=890 => " (canned cycles other than G73, G81, G82, G83)",
+        930 => " (inverse-time feed)",
+        950 => " (feed per revolution)",
+        70 | 80 => " (lathe diameter/radius mode: this controller drives a 3-axis mill)",
+        _ => "",
+    }
+}
