@@ -1,5 +1,6 @@
 //! Cutter radius compensation (LinuxCNC G-code reference, "G40", "G41, G42", "G41.1, G42.1";
 //! Siemens 840D G450/G451) and seed 003's own example program.
+#![allow(unused_crate_dependencies)]
 
 use cnc_motion::config::Machine;
 use cnc_motion::gcode::{Block, Motion, Reader};

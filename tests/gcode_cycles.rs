@@ -1,6 +1,7 @@
 //! Drilling cycles expanded in the reader (LinuxCNC G-code reference, "G81 Drilling Cycle",
 //! "G82 Drilling Cycle, Dwell", "G83 Peck Drilling Cycle", "G73 Drilling Cycle with Chip
 //! Breaking", "G98, G99", "G80").
+#![allow(unused_crate_dependencies)]
 
 use cnc_motion::gcode::{validate, Motion, Reader};
 use std::sync::Arc;

@@ -1,5 +1,6 @@
 //! Block delete, optional stop, tool table, tool length, work offsets, G10, G92, G53, G28/G30:
 //! all applied in the reader, blocks come out in machine coordinates.
+#![allow(unused_crate_dependencies)]
 
 use cnc_motion::config::Machine;
 use cnc_motion::gcode::{Block, Motion, Reader, StopKind};

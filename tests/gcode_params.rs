@@ -1,5 +1,6 @@
 //! Numbered and named parameters and expressions (LinuxCNC G-code reference, "Parameters",
 //! "Expressions", "Binary Operators", "Functions").
+#![allow(unused_crate_dependencies)]
 
 use cnc_motion::gcode::{validate, Block, Motion, Reader};
 use std::sync::Arc;
