@@ -566,7 +566,7 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
 }
 
 /// Tangential shares tried for a chain (see `chain_limits`).
-const TANGENTIAL_SHARES: [f64; 8] = [0.005, 0.01, 0.02, 0.05, 0.1, 0.15, 0.25, 0.4];
+const TANGENTIAL_SHARES: [f64; 5] = [0.005, 0.02, 0.05, 0.1, 0.25];
 
 /// Time of the 7-phase law from rest to rest over `length` within `limits`.
 fn rest_to_rest(length: f64, limits: &Limits) -> f64 {
