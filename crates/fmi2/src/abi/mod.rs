@@ -95,6 +95,40 @@ pub enum Call {
 }
 
 impl Call {
+    /// Every call, in declaration order.
+    pub const ALL: [Call; 30] = [
+        Call::SetDebugLogging,
+        Call::SetupExperiment,
+        Call::EnterInitializationMode,
+        Call::ExitInitializationMode,
+        Call::Terminate,
+        Call::Reset,
+        Call::GetReal,
+        Call::GetInteger,
+        Call::GetBoolean,
+        Call::GetString,
+        Call::SetReal,
+        Call::SetInteger,
+        Call::SetBoolean,
+        Call::SetString,
+        Call::GetFmuState,
+        Call::SetFmuState,
+        Call::FreeFmuState,
+        Call::SerializedFmuStateSize,
+        Call::SerializeFmuState,
+        Call::DeserializeFmuState,
+        Call::GetDirectionalDerivative,
+        Call::SetRealInputDerivatives,
+        Call::GetRealOutputDerivatives,
+        Call::DoStep,
+        Call::CancelStep,
+        Call::GetStatus,
+        Call::GetRealStatus,
+        Call::GetIntegerStatus,
+        Call::GetBooleanStatus,
+        Call::GetStringStatus,
+    ];
+
     /// The table: C name and the states in which the call is allowed (as the Reference-FMUs'
     /// `MASK_fmi2…`; set* additionally follow the causality/variability rules in `Instance::set`).
     pub const fn spec(self) -> (&'static str, u16) {
@@ -223,38 +257,7 @@ mod tests {
     #[test]
     fn in_the_error_state_only_get_status_reset_and_fmu_state_calls_are_allowed() {
         use Call::*;
-        let all = [
-            SetDebugLogging,
-            SetupExperiment,
-            EnterInitializationMode,
-            ExitInitializationMode,
-            Terminate,
-            Reset,
-            GetReal,
-            GetInteger,
-            GetBoolean,
-            GetString,
-            SetReal,
-            SetInteger,
-            SetBoolean,
-            SetString,
-            GetFmuState,
-            SetFmuState,
-            FreeFmuState,
-            SerializedFmuStateSize,
-            SerializeFmuState,
-            DeserializeFmuState,
-            GetDirectionalDerivative,
-            SetRealInputDerivatives,
-            GetRealOutputDerivatives,
-            DoStep,
-            CancelStep,
-            GetStatus,
-            GetRealStatus,
-            GetIntegerStatus,
-            GetBooleanStatus,
-            GetStringStatus,
-        ];
+        let all = Call::ALL;
         let allowed: Vec<&str> = all
             .iter()
             .filter(|c| c.spec().1 & mask::ERROR != 0)
