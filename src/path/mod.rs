@@ -259,6 +259,9 @@ struct Held {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PathBuilder {
     machine: Machine,
+    /// The machine with the transition jerk on every axis (seed 004 Table 1), where one is set:
+    /// the limits of the constant-speed transitions of the polynomial and circular modes.
+    transition_machine: Option<Machine>,
     held: Option<Held>,
     smooth: SmoothBuilder,
     merger: merge::Merger,
@@ -266,8 +269,16 @@ pub struct PathBuilder {
 
 impl PathBuilder {
     pub fn new(machine: &Machine) -> PathBuilder {
+        let transition_machine = machine.max_transition_jerk.map(|j| {
+            let mut m = machine.clone();
+            for a in &mut m.axes {
+                a.max_jerk = j;
+            }
+            m
+        });
         PathBuilder {
             machine: machine.clone(),
+            transition_machine,
             held: None,
             smooth: SmoothBuilder::new(),
             merger: merge::Merger::new(),
@@ -519,20 +530,8 @@ impl PathBuilder {
         max_cut: f64,
         feeds: f64,
     ) -> Option<(Segment, f64)> {
-        // Passing a transition at one speed, the axes may use the transition jerk (seed 004
-        // Table 1), where the machine gives one.
-        let with_transition_jerk;
-        let m = match self.machine.max_transition_jerk {
-            Some(j) => {
-                let mut m = self.machine.clone();
-                for a in &mut m.axes {
-                    a.max_jerk = j;
-                }
-                with_transition_jerk = m;
-                &with_transition_jerk
-            }
-            None => &self.machine,
-        };
+        // Passing a transition at one speed, the axes may use the transition jerk.
+        let m = self.transition_machine.as_ref().unwrap_or(&self.machine);
         if dot(t_in, t_out) < corner::REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
             return None;
         }
