@@ -247,29 +247,22 @@ pub fn set_by_name<M: Model>(model: &mut M, name: &str, value: Value) -> Result<
     model.set(i, value)
 }
 
-/// A GUID that changes whenever the variable table changes: FNV-1a (128 bit) of its rows.
+/// Namespace of the GUIDs of this layer's FMUs (a fixed random UUID: GUIDs never collide with
+/// other v5 names).
+const GUID_NAMESPACE: uuid::Uuid = uuid::Uuid::from_u128(0x4c1f_5a1e_9b0d_4e57_a6c3_2f8e_1d7b_90a4);
+
+/// A GUID that changes whenever the variable table changes: the name-based UUID (v5) of its rows.
 pub fn guid_of(variables: &[VariableInfo]) -> String {
-    let mut h: u128 = 0x6c62272e07bb014262b821756295c58d;
-    let prime: u128 = 0x0000000001000000000000000000013B;
-    for v in variables {
-        let row = format!(
-            "{}|{}|{:?}|{:?}|{:?}|{:?}|{:?};",
-            v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit, v.dependencies
-        );
-        for b in row.bytes() {
-            h ^= b as u128;
-            h = h.wrapping_mul(prime);
-        }
-    }
-    let x = format!("{h:032x}");
-    format!(
-        "{{{}-{}-{}-{}-{}}}",
-        &x[0..8],
-        &x[8..12],
-        &x[12..16],
-        &x[16..20],
-        &x[20..32]
-    )
+    let rows: String = variables
+        .iter()
+        .map(|v| {
+            format!(
+                "{}|{}|{:?}|{:?}|{:?}|{:?}|{:?};",
+                v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit, v.dependencies
+            )
+        })
+        .collect();
+    format!("{{{}}}", uuid::Uuid::new_v5(&GUID_NAMESPACE, rows.as_bytes()))
 }
 
 /// Start values read from a model at its defaults (None for calculated variables).
@@ -289,4 +282,22 @@ pub fn model_description<M: Model>() -> String {
 /// documentation/index.html of a model: `intro_html` and the table of variables.
 pub fn documentation<M: Model>(intro_html: &str) -> String {
     doc::html(M::info(), intro_html, &start_values::<M>())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn guid_is_a_v5_uuid_of_the_table() {
+        let row = |unit: &str| {
+            let v = VariableInfo::new("x.p", Type::Real, Causality::Output, Variability::Continuous, "p");
+            vec![v.unit(unit)]
+        };
+        let g = guid_of(&row("m"));
+        assert_eq!(g, guid_of(&row("m")), "the same table, the same GUID");
+        assert_ne!(g, guid_of(&row("N")), "another unit, another GUID");
+        let u = uuid::Uuid::parse_str(g.trim_matches(|c| c == '{' || c == '}')).unwrap();
+        assert_eq!((g.len(), u.get_version_num()), (38, 5));
+    }
 }
