@@ -184,7 +184,8 @@ def cosim_ecos(ssp=SSP, stop_time=2.0, h=H, parameters=None):
     listener runs, so an output with direct feed-through (MachineStructure's x.acceleration) is
     sampled with the NEW input already set; every other output is sampled as the own master does.
     Ecos ignores the SSD's inline parameter bindings (it reads parameter sets from .ssv files): give
-    them as `parameters` {"structure.x.couplingMass": 1.0, ...}, set before initialization."""
+    them as `parameters` {"structure.x.couplingMass": 1.0, "cnc.program": "G1 X1 F600", ...} (set by the
+    Python type of the value: float Real, int Integer, bool Boolean, str String) before initialization."""
     from ecospy import EcosSimulation, SimulationListener
     from make_ssp import CNC_RECORDED, STRUCTURE_RECORDED
 
@@ -208,7 +209,8 @@ def cosim_ecos(ssp=SSP, stop_time=2.0, h=H, parameters=None):
     try:
         for name, value in (parameters or {}).items():
             comp, var = name.split(".", 1)
-            sim.set_real(f"{comp}::{var}", value)
+            setter = {bool: sim.set_bool, int: sim.set_integer, str: sim.set_string}.get(type(value), sim.set_real)
+            setter(f"{comp}::{var}", value)
         sim.init()
         sim.step(int(round(stop_time / h)))
         sim.terminate()

@@ -1,4 +1,4 @@
-"""Co-simulation CncMotion ⇄ MachineStructure: the three masters agree, and jerk-limited profiles
+"""Co-simulation CncMotion ⇄ MachineStructure: the four masters agree, and jerk-limited profiles
 leave less residual vibration in the frame than the trapezoid."""
 import json
 
@@ -142,6 +142,23 @@ def test_ecos_equals_own_master(own, ssp, structure):
         assert np.max(np.abs(got - want)) <= 1e-14 * scale, (a, np.max(np.abs(got - want)), scale)
         moving += scale > 0
     assert moving >= 2, "the frame accelerates along at least two axes in the first 1.5 s"
+
+
+def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp):
+    """Ecos on a real CAM program (Pessoles' linear path, its first 3 s: the rapid and five cutting moves) with the trapezoid law chosen
+    through the Integer twin machine.profileIndex, two-way with 1 kg on the frame: every output
+    without direct feed-through bit for bit as the own master setting the Enumeration."""
+    from conftest import SHARED
+    program = (SHARED / "corpus" / "pessoles_linear.ngc").read_text()
+    stop = 3.0
+    own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"program": program, "machine.profile": "trapezoid"},
+                              structure_params=STABLE, stop_time=stop)
+    params = {"cnc.program": program, "cnc.machine.profileIndex": 5}
+    params.update({f"structure.{k}": v for k, v in STABLE.items()})
+    ecos = cosim.cosim_ecos(ssp, stop_time=stop, parameters=params)
+    assert np.max(np.abs(own_["cnc.path.feed"])) > 0.01, "the program moves"
+    assert np.max(own_["cnc.status.line"]) >= 8, "past the rapid, into the cutting moves"
+    _compare(own_, _without_feedthrough(ecos), "Ecos (pessoles_linear, trapezoid)")
 
 
 def test_outputs_insensitive_to_ulp_step_jitter(own, own_ns):
