@@ -205,9 +205,12 @@ impl Default for CncMotion {
 impl CncMotion {
     /// The value of `slot` on axis `i`.
     pub fn get(&self, slot: Slot, i: usize) -> Value {
-        let m = &self.machine;
-        let tick = || self.engine.as_ref().map(|e| *e.tick()).unwrap_or_default();
-        let drive = || self.engine.as_ref().map(|e| e.axes()[i]).unwrap_or_default();
+        let (m, a) = (&self.machine, &self.machine.axes[i]);
+        let (t, d) = self
+            .engine
+            .as_ref()
+            .map(|e| (*e.tick(), e.axes()[i]))
+            .unwrap_or_default();
         match slot {
             Slot::Program => Value::String(self.program.clone()),
             Slot::ProgramFile => Value::String(self.program_file.clone()),
@@ -217,35 +220,18 @@ impl CncMotion {
             Slot::ProfileIndex => Value::Integer(self.profile_index),
             Slot::Corner => Value::Integer(enum_value(&CornerMode::ALL, &m.corner)),
             Slot::CornerIndex => Value::Integer(self.corner_index),
-            Slot::Limit(k) => {
-                let l = &m.axes[i];
-                Value::Real([l.max_velocity, l.max_acceleration, l.max_jerk][k])
-            }
+            Slot::Limit(k) => Value::Real([a.max_velocity, a.max_acceleration, a.max_jerk][k]),
             Slot::Servo(k) => Value::of_type(servo_type(SERVO[k].fmi_name), (SERVO[k].get)(&m.servo[i])),
             Slot::ServoEnabled => Value::Boolean(self.servo_enabled),
             Slot::FeedOverride => Value::Real(self.feed_override),
             Slot::FeedHold => Value::Boolean(self.feed_hold),
             Slot::LoadForce => Value::Real(self.load_force[i]),
-            Slot::Command(k) => Value::Real({
-                let t = tick();
-                [t.p, t.v, t.a, t.j][k][i]
-            }),
-            Slot::Path(k) => Value::Real({
-                let t = tick();
-                [t.feed, t.path_acceleration, t.path_jerk, t.distance][k]
-            }),
-            Slot::Line => Value::Integer(tick().line as i32),
-            Slot::Finished => Value::Boolean(tick().finished),
-            Slot::Drive(k) => Value::Real({
-                let d = drive();
-                [
-                    d.position,
-                    d.velocity,
-                    d.following_error,
-                    d.motor_torque,
-                    d.drive_force,
-                ][k]
-            }),
+            Slot::Command(k) => Value::Real([t.p, t.v, t.a, t.j][k][i]),
+            Slot::Path(k) => Value::Real([t.feed, t.path_acceleration, t.path_jerk, t.distance][k]),
+            Slot::Line => Value::Integer(t.line as i32),
+            Slot::Finished => Value::Boolean(t.finished),
+            #[rustfmt::skip]
+            Slot::Drive(k) => Value::Real([d.position, d.velocity, d.following_error, d.motor_torque, d.drive_force][k]),
             Slot::ContourError => Value::Real(self.engine.as_ref().map_or(0.0, |e| e.contour_error())),
         }
     }
