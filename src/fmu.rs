@@ -92,12 +92,8 @@ impl fmi2::Model for CncMotionFmu {
             return Err(format!("model state version {version}, expected {STATE_VERSION}"));
         }
         if let Some((text, bytes)) = engine {
-            let name = if m.program.trim().is_empty() {
-                m.program_file.as_str()
-            } else {
-                "program"
-            };
-            let mut e = Engine::new(Arc::from(text), name, &m.machine).map_err(|e| e.to_string())?;
+            let mut e =
+                Engine::new(Arc::from(text), m.source_name(), &m.machine).map_err(|e| e.to_string())?;
             e.restore_state(&bytes)?;
             m.engine = Some(e);
         }

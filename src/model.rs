@@ -265,6 +265,15 @@ impl CncMotion {
         Ok(())
     }
 
+    /// The program's name in messages: `program` for inline text, else the file.
+    pub fn source_name(&self) -> &str {
+        if self.program.trim().is_empty() {
+            &self.program_file
+        } else {
+            "program"
+        }
+    }
+
     /// Load the program (inline text, or the file, relative to the resources folder) and start
     /// the engine. Errors come back as `file:line:col: message`.
     pub fn initialize(&mut self) -> Result<(), String> {
@@ -275,17 +284,14 @@ impl CncMotion {
             self.machine.corner = enum_item(&CornerMode::ALL, self.corner_index)?;
         }
         self.machine.check()?;
-        let (text, name) = if !self.program.trim().is_empty() {
-            (self.program.clone(), "program".to_string())
+        let text = if self.program.trim().is_empty() {
+            let dir = self.resources.clone().unwrap_or_default();
+            crate::gcode::source::read_program_file(&dir.join(&self.program_file), &self.program_file)?
         } else {
-            let path = match &self.resources {
-                Some(dir) => dir.join(&self.program_file),
-                None => PathBuf::from(&self.program_file),
-            };
-            let text = crate::gcode::source::read_program_file(&path, &self.program_file)?;
-            (text, self.program_file.clone())
+            self.program.clone()
         };
-        let engine = Engine::new(Arc::from(text), &name, &self.machine).map_err(|e| e.to_string())?;
+        let engine =
+            Engine::new(Arc::from(text), self.source_name(), &self.machine).map_err(|e| e.to_string())?;
         self.engine = Some(engine.with_servo(self.servo_enabled));
         Ok(())
     }
