@@ -6,7 +6,7 @@ CARGO  ?= cargo
 # Binaries follow CARGO_TARGET_DIR when it is set; the FMUs always go to target/fmu.
 BIN    := $(or $(CARGO_TARGET_DIR),target)/release
 
-.PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep fuzz
+.PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep fuzz system-deps
 
 all: build
 
@@ -18,13 +18,25 @@ $(VENV)/.installed: requirements.txt
 	$(VENV)/bin/pip install --quiet --disable-pip-version-check -r requirements.txt
 	touch $@
 
+# System libraries of the pinned Python packages: Ecos (ecospy) loads oneTBB's libtbb.so.12.
+# Installed with apt-get where missing (as root: CI, a fresh machine); skipped when present.
+SYSTEM_LIBS := libtbb.so.12:libtbb12
+system-deps:
+	@for pair in $(SYSTEM_LIBS); do lib=$${pair%%:*}; pkg=$${pair#*:}; \
+	  /sbin/ldconfig -p | grep -q "$$lib" && continue; \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing $$pkg (for $$lib)"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$$pkg" >/dev/null; \
+	  else echo "missing $$lib: run 'sudo apt-get install $$pkg' (needed by ecospy)" >&2; exit 1; fi; \
+	done
+
 build:
 	$(CARGO) build --release --workspace --bins --lib
 
 # Both FMUs and the SSP that couples them (examples/cosim.ssp, generated, not committed).
 STRUCTURE_PACKAGE ?= $(BIN)/package-machine-structure target/fmu/MachineStructure.fmu
 
-fmu: build venv
+fmu: build venv system-deps
 	$(BIN)/cnc-motion package --output target/fmu/CncMotion.fmu
 	$(STRUCTURE_PACKAGE)
 	$(PY) examples/make_ssp.py
@@ -37,6 +49,7 @@ cosim: fmu
 	$(PY) examples/cosim.py --master slaves
 	$(PY) examples/cosim.py --master fmpy-ssp
 	$(PY) examples/cosim.py --master libcosim
+	$(PY) examples/cosim.py --master ecos
 
 sweep: fmu
 	$(PY) examples/sweep.py

@@ -2,15 +2,16 @@
 
   * `cosim_slaves`   — this file's own master over fmpy's FMU2Slave,
   * `cosim_fmpy_ssp` — fmpy.ssp.simulate_ssp on examples/cosim.ssp,
-  * `cosim_libcosim` — libcosim (libcosimpy) on the same SSP.
+  * `cosim_libcosim` — libcosim (libcosimpy) on the same SSP,
+  * `cosim_ecos`     — Ecos (ecospy) on the same SSP.
 
-All three use the same scheme (fixed step, Jacobi: every FMU steps with the values the others had at
+All four use the same scheme (fixed step, Jacobi: every FMU steps with the values the others had at
 the start of the step, then the connections are applied), the two-way force coupling
     cnc.{x,y,z}.driveForce → structure.{x,y,z}.driveForce,
     structure.{x,y,z}.loadForce → cnc.{x,y,z}.loadForce,
 and connector values that start at 0 (the frame is at rest, the drives hold still).
 
-    python examples/cosim.py [--master slaves|fmpy-ssp|libcosim] [--stop-time S] [--program FILE.ngc]
+    python examples/cosim.py [--master slaves|fmpy-ssp|libcosim|ecos] [--stop-time S] [--program FILE.ngc]
                              [--profile scurve7] [--out out/]
 
 Results: dict name → numpy array, names as "cnc.x.command.position", "structure.x.deflection",
@@ -176,6 +177,52 @@ def cosim_libcosim(ssp=SSP, stop_time=2.0, h=H):
     return res
 
 
+def cosim_ecos(ssp=SSP, stop_time=2.0, h=H, parameters=None):
+    """Ecos through ecospy: SSP loaded by Ecos, fixed step, time summed in floating point (t += h, so
+    the communication points drift by ulps, e.g. 1.4999999999999456 after 1500 steps; h itself is
+    exactly `h`). Ecos applies the connections right after each step and before its post-step
+    listener runs, so an output with direct feed-through (MachineStructure's x.acceleration) is
+    sampled with the NEW input already set; every other output is sampled as the own master does.
+    Ecos ignores the SSD's inline parameter bindings (it reads parameter sets from .ssv files): give
+    them as `parameters` {"structure.x.couplingMass": 1.0, "cnc.program": "G1 X1 F600", ...} (set by the
+    Python type of the value: float Real, int Integer, bool Boolean, str String) before initialization."""
+    from ecospy import EcosSimulation, SimulationListener
+    from make_ssp import CNC_RECORDED, STRUCTURE_RECORDED
+
+    wanted = {"cnc": CNC_RECORDED + [f"{a}.driveForce" for a in AXES],
+              "structure": STRUCTURE_RECORDED + [f"{a}.loadForce" for a in AXES]}
+    sim = EcosSimulation(ssp_path=str(ssp), step_size=h)
+    getters = []  # (key, read)
+    for comp, names in wanted.items():
+        for n in names:
+            ident = f"{comp}::{n}"
+            read = sim.get_bool if n == "status.finished" else sim.get_integer if n == "status.line" else sim.get_real
+            getters.append((f"{comp}.{n}", lambda read=read, ident=ident: float(read(ident))))
+    rows, times = [], []
+
+    class Recorder(SimulationListener):
+        def post(self, info):
+            times.append(info.time)
+            rows.append([read() for _, read in getters])
+
+    sim.add_listener("recorder", Recorder())
+    try:
+        for name, value in (parameters or {}).items():
+            comp, var = name.split(".", 1)
+            setter = {bool: sim.set_bool, int: sim.set_integer, str: sim.set_string}.get(type(value), sim.set_real)
+            setter(f"{comp}::{var}", value)
+        sim.init()
+        sim.step(int(round(stop_time / h)))
+        sim.terminate()
+    finally:
+        sim.free()
+    a = np.array(rows)
+    res = {"time": np.array(times)}
+    for i, (key, _) in enumerate(getters):
+        res[key] = a[:, i]
+    return res
+
+
 def residual_vibration(res, window=0.2, min_standstill=0.02, prefix="cnc."):
     """RMS of the frame deflection |d| in the windows after each stop of the command.
 
@@ -209,7 +256,7 @@ def residual_vibration(res, window=0.2, min_standstill=0.02, prefix="cnc."):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--master", choices=["slaves", "fmpy-ssp", "libcosim"], default="slaves")
+    ap.add_argument("--master", choices=["slaves", "fmpy-ssp", "libcosim", "ecos"], default="slaves")
     ap.add_argument("--stop-time", type=float)
     ap.add_argument("--program", help="G-code file (own master only; the SSP runs the FMU's default)")
     ap.add_argument("--profile", default=None, help="machine.profile (own master only)")
@@ -232,6 +279,8 @@ def main():
             st.cleanup()
     elif a.master == "fmpy-ssp":
         res = cosim_fmpy_ssp(stop_time=a.stop_time or 6.5)
+    elif a.master == "ecos":
+        res = cosim_ecos(stop_time=a.stop_time or 6.5)
     else:
         res = cosim_libcosim(stop_time=a.stop_time or 6.5)
     t = res["time"]

@@ -3,7 +3,8 @@
 use crate::config::Machine;
 use crate::engine::Engine;
 use crate::model::{self, CncMotion, Slot};
-use fmi2::{ModelInfo, Value, VariableInfo};
+use fmi2::table::Entry;
+use fmi2::{ModelInfo, Value};
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
 
@@ -17,8 +18,8 @@ const STATE_VERSION: u32 = 2;
 #[derive(Clone, Debug)]
 pub struct CncMotionFmu(pub CncMotion);
 
-fn table() -> &'static [(VariableInfo, Slot)] {
-    static TABLE: OnceLock<Vec<(VariableInfo, Slot)>> = OnceLock::new();
+fn table() -> &'static [Entry<Slot>] {
+    static TABLE: OnceLock<Vec<Entry<Slot>>> = OnceLock::new();
     TABLE.get_or_init(model::rows)
 }
 
@@ -40,17 +41,12 @@ impl fmi2::Model for CncMotionFmu {
     fn info() -> &'static ModelInfo {
         static INFO: OnceLock<ModelInfo> = OnceLock::new();
         INFO.get_or_init(|| {
-            let variables = table().iter().map(|(v, _)| v.clone()).collect();
             let description =
                 "CNC motion controller: G-code to jerk-limited axis motion through servo drives";
             ModelInfo {
-                version: env!("CARGO_PKG_VERSION").into(),
-                author: "cnc-motion authors".into(),
-                copyright: "Copyright (c) 2026 the cnc-motion authors".into(),
-                license: env!("CARGO_PKG_LICENSE").into(),
                 enumerations: model::enumerations(),
                 default_experiment: (0.0, default_stop_time(), 1e-6, 0.001),
-                ..ModelInfo::new(model::MODEL_NAME, description, variables)
+                ..fmi2::crate_model_info!(model::MODEL_NAME, description, fmi2::table::variables(table()))
             }
         })
     }
@@ -63,11 +59,11 @@ impl fmi2::Model for CncMotionFmu {
     }
 
     fn get(&self, index: usize) -> Value {
-        self.0.get(table()[index].1)
+        self.0.get(table()[index].slot, table()[index].axis)
     }
 
     fn set(&mut self, index: usize, value: Value) -> Result<(), String> {
-        self.0.set(table()[index].1, value)
+        self.0.set(table()[index].slot, table()[index].axis, value)
     }
 
     fn exit_initialization(&mut self) -> Result<(), String> {
@@ -96,12 +92,8 @@ impl fmi2::Model for CncMotionFmu {
             return Err(format!("model state version {version}, expected {STATE_VERSION}"));
         }
         if let Some((text, bytes)) = engine {
-            let name = if m.program.trim().is_empty() {
-                m.program_file.as_str()
-            } else {
-                "program"
-            };
-            let mut e = Engine::new(Arc::from(text), name, &m.machine).map_err(|e| e.to_string())?;
+            let mut e =
+                Engine::new(Arc::from(text), m.source_name(), &m.machine).map_err(|e| e.to_string())?;
             e.restore_state(&bytes)?;
             m.engine = Some(e);
         }

@@ -150,3 +150,40 @@ fn expm_squaring_count_is_bounded() {
     let e = cnc_motion::servo::expm(&m);
     assert!(e[0][0].is_nan() && start.elapsed().as_secs_f64() < 0.1);
 }
+
+/// The FMU's parameter rows and the range table name the same parameters: every row of
+/// config/ranges.rs is an FMU variable declaring that range (in SI), and every numeric
+/// `machine.*`, axis-limit and drive parameter of the FMU has a row.
+#[test]
+fn fmu_parameters_and_the_range_table_name_the_same_parameters() {
+    use cnc_motion::config::ranges::{declared, AXIS, MACHINE, SERVO};
+    let vars = &CncMotionFmu::info().variables;
+    let find = |name: &str| vars.iter().find(|v| v.name == name);
+    let mut names: Vec<String> = MACHINE.iter().map(|r| r.fmi.to_string()).collect();
+    for axis in ["x", "y", "z"] {
+        names.extend(AXIS.iter().map(|r| format!("{axis}.{}", r.fmi)));
+        names.extend(SERVO.iter().map(|r| format!("{axis}.servo.{}", r.fmi)));
+    }
+    for name in &names {
+        let v = find(name).unwrap_or_else(|| panic!("range row {name} has no FMU variable"));
+        if v.kind != fmi2::Type::Boolean {
+            assert_eq!(
+                (v.min, v.max),
+                declared(name).map(|(a, b)| (Some(a), Some(b))).unwrap(),
+                "{name}"
+            );
+        }
+    }
+    let numeric_parameters = vars.iter().filter(|v| {
+        let ranged = v.name.starts_with("machine.") || v.name.contains(".servo.") || v.name.contains(".max");
+        ranged && matches!(v.kind, fmi2::Type::Real | fmi2::Type::Integer) && !v.name.ends_with("Index")
+    });
+    for v in numeric_parameters {
+        assert!(
+            names.contains(&v.name),
+            "FMU parameter {} has no row in config/ranges.rs",
+            v.name
+        );
+    }
+    assert_eq!(names.len(), MACHINE.len() + 3 * (AXIS.len() + SERVO.len()));
+}

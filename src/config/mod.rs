@@ -47,6 +47,19 @@ impl CornerMode {
             CornerMode::Smooth => "smooth",
         }
     }
+
+    /// What the mode does (the FMU's Enumeration item description).
+    pub fn description(self) -> &'static str {
+        match self {
+            CornerMode::ExactStop => "stop at every corner",
+            CornerMode::AccelerationPeriod => "corner feed A·T/(1−cos θ) per axis (seed 003)",
+            CornerMode::Circular => "circular blend within the path tolerance",
+            CornerMode::Polynomial => "quintic transition at one speed within the path tolerance (seed 004)",
+            CornerMode::Smooth => {
+                "C2 quintic transitions planned with the path, micro-segment runs as one curve"
+            }
+        }
+    }
 }
 
 /// Limits of one axis (SI).

@@ -73,6 +73,17 @@ impl ProfileKind {
         }
     }
 
+    /// What the law is (the FMU's Enumeration item description).
+    pub fn description(self) -> &'static str {
+        match self {
+            ProfileKind::Scurve7 => "7-phase jerk-limited S-curve (Pessoles et al.)",
+            ProfileKind::Quintic => "quintic polynomial feedrate (Chen et al.)",
+            ProfileKind::Jerk15 => "15-phase jerk-continuous law (Ji et al.)",
+            ProfileKind::Mixed57 => "mixed 7/5-period S-curve (Zhang et al.)",
+            ProfileKind::Trapezoid => "linear acceleration/deceleration",
+        }
+    }
+
     pub fn from_name(name: &str) -> Option<ProfileKind> {
         ProfileKind::ALL.into_iter().find(|k| k.name() == name)
     }

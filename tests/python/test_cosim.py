@@ -1,4 +1,4 @@
-"""Co-simulation CncMotion ⇄ MachineStructure: the three masters agree, and jerk-limited profiles
+"""Co-simulation CncMotion ⇄ MachineStructure: the four masters agree, and jerk-limited profiles
 leave less residual vibration in the frame than the trapezoid."""
 import json
 
@@ -74,6 +74,8 @@ def test_masters_agree_on_a_stable_two_way_loop(cnc, structure, stable_ssp, grid
         _compare(own_, cosim.cosim_fmpy_ssp(stable_ssp, stop_time=T,
                                             parameters={f"structure.{k}": v for k, v in STABLE.items()}),
                  "fmpy.ssp (stable)")
+        ecos = cosim.cosim_ecos(stable_ssp, stop_time=T, parameters={f"structure.{k}": v for k, v in STABLE.items()})
+        _compare(own_, _without_feedthrough(ecos), "Ecos (stable)")
     else:
         _compare(own_, cosim.cosim_libcosim(stable_ssp, stop_time=T), "libcosim (stable)")
 
@@ -98,6 +100,65 @@ def test_libcosim_equals_own_master(own_ns, ssp):
     """libcosim counts time in integer ns and passes h = t(k+1) − t(k) in seconds, which differs from
     1e-3 by ±1 ulp at most steps; on that same time grid the own master gives identical signals."""
     _compare(own_ns, cosim.cosim_libcosim(ssp, stop_time=T), "libcosim")
+
+
+def _feedthrough_outputs():
+    """Outputs that declare a direct dependency on an input (ModelStructure), as "comp.name"."""
+    from fmpy import read_model_description
+    out = []
+    for comp, fmu in (("cnc", fmusim.CNC_FMU), ("structure", fmusim.STRUCTURE_FMU)):
+        md = read_model_description(str(fmu))
+        out += [f"{comp}.{o.variable.name}" for o in md.outputs if o.dependencies]
+    return out
+
+
+def _without_feedthrough(res):
+    return {k: v for k, v in res.items() if k not in _feedthrough_outputs()}
+
+
+def test_ecos_equals_own_master(own, ssp, structure):
+    """A third importer, Ecos (ecospy): it sums its time in floating point (the communication points
+    drift by ulps, which the FMUs accept) and steps by exactly 1 ms, so on the exact grid every output
+    without direct feed-through equals the own master's bit for bit. Ecos samples after applying the
+    connections, so x.acceleration = Σ(F/m − 2ζωq̇ − ω²q) already holds the new drive force: it
+    equals the own master's value plus (F_k − F_{k−1})·Σ 1/m_i."""
+    ecos = cosim.cosim_ecos(ssp, stop_time=T)
+    drift = np.max(np.abs(ecos["time"] - (np.arange(len(ecos["time"])) + 1) * cosim.H))
+    assert 0 < drift < 1e-12, f"Ecos' time grid drifts by {drift:.3g} s"
+    feedthrough = _feedthrough_outputs()
+    assert feedthrough == [f"structure.{a}.acceleration" for a in "xyz"], feedthrough
+    _compare(own, _without_feedthrough(ecos), "Ecos")
+    from fmpy import read_model_description
+    start = {v.name: float(v.start) for v in read_model_description(str(fmusim.STRUCTURE_FMU)).modelVariables
+             if v.start is not None and v.type == "Real"}
+    n = len(own["time"])
+    moving = 0
+    for a in "xyz":
+        force = own[f"cnc.{a}.driveForce"]
+        step = np.diff(force, prepend=0.0) * (1 / start[f"{a}.mode1.mass"] + 1 / start[f"{a}.mode2.mass"])
+        want = own[f"structure.{a}.acceleration"] + step
+        got = ecos[f"structure.{a}.acceleration"][:n]
+        scale = np.max(np.abs(want))
+        assert np.max(np.abs(got - want)) <= 1e-14 * scale, (a, np.max(np.abs(got - want)), scale)
+        moving += scale > 0
+    assert moving >= 2, "the frame accelerates along at least two axes in the first 1.5 s"
+
+
+def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp):
+    """Ecos on a real CAM program (Pessoles' linear path, its first 3 s: the rapid and five cutting moves) with the trapezoid law chosen
+    through the Integer twin machine.profileIndex, two-way with 1 kg on the frame: every output
+    without direct feed-through bit for bit as the own master setting the Enumeration."""
+    from conftest import SHARED
+    program = (SHARED / "corpus" / "pessoles_linear.ngc").read_text()
+    stop = 3.0
+    own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"program": program, "machine.profile": "trapezoid"},
+                              structure_params=STABLE, stop_time=stop)
+    params = {"cnc.program": program, "cnc.machine.profileIndex": 5}
+    params.update({f"structure.{k}": v for k, v in STABLE.items()})
+    ecos = cosim.cosim_ecos(ssp, stop_time=stop, parameters=params)
+    assert np.max(np.abs(own_["cnc.path.feed"])) > 0.01, "the program moves"
+    assert np.max(own_["cnc.status.line"]) >= 8, "past the rapid, into the cutting moves"
+    _compare(own_, _without_feedthrough(ecos), "Ecos (pessoles_linear, trapezoid)")
 
 
 def test_outputs_insensitive_to_ulp_step_jitter(own, own_ns):

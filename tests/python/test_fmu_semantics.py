@@ -256,3 +256,29 @@ def test_instantiate_free_cycles_do_not_leak(fmu):
     grown = _rss_kb() - before
     f.freeInstance()
     assert grown < 1024, f"resident set grew by {grown} kB over 1000 cycles"
+
+
+def test_resources_in_a_folder_with_spaces_percent_and_unicode(cnc, tmp_path):
+    """fmpy passes fmuResourceLocation as pathlib's as_uri(): percent-encoded spaces, '%', '#' and
+    UTF-8. CncMotion finds its default programFile there (the resources folder decoded exactly once)
+    and runs the shipped program's first move."""
+    import shutil
+    from fmpy.fmi2 import FMU2Slave
+    where = tmp_path / "50% done" / "Überlauf #2"
+    shutil.copytree(cnc.dir, where)
+    uri = (where / "resources").as_uri()
+    assert "%25" in uri and "%20" in uri and "%C3%9C" in uri and "%23" in uri, uri
+    f = FMU2Slave(guid=cnc.md.guid, unzipDirectory=str(where), modelIdentifier=cnc.md.coSimulation.modelIdentifier,
+                  instanceName="percent")
+    f.instantiate()
+    try:
+        f.setupExperiment(startTime=0.0)
+        f.enterInitializationMode()
+        f.exitInitializationMode()
+        feed = cnc.vars["path.feed"].valueReference
+        for k in range(300):
+            f.doStep(k * H, H)
+        assert f.getReal([feed])[0] > 0, "the default program moves"
+        f.terminate()
+    finally:
+        f.freeInstance()

@@ -58,7 +58,7 @@ const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x02";
 
 /// Why a value is outside what the variable declares (non-finite Real, min/max, enumeration
 /// items), if it is.
-fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<String> {
+pub(crate) fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<String> {
     let x = match *value {
         Value::Real(x) if !x.is_finite() => return Some(format!("{x} is not finite")),
         Value::Real(x) => x,

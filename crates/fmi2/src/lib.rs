@@ -62,6 +62,43 @@ pub enum Value {
     String(String),
 }
 
+impl Value {
+    /// The value as a number (Integer as is, Boolean as 0 or 1), for models that keep numbers as f64.
+    pub fn number(&self) -> Result<f64, String> {
+        match *self {
+            Value::Real(x) => Ok(x),
+            Value::Integer(n) => Ok(f64::from(n)),
+            Value::Boolean(b) => Ok(f64::from(u8::from(b))),
+            Value::String(_) => Err("not a number".into()),
+        }
+    }
+
+    /// A number kept as f64 as a value of type `kind` (Integer truncated, Boolean: not 0).
+    pub fn of_type(kind: Type, x: f64) -> Value {
+        match kind {
+            Type::Integer | Type::Enumeration(_) => Value::Integer(x as i32),
+            Type::Boolean => Value::Boolean(x != 0.0),
+            _ => Value::Real(x),
+        }
+    }
+}
+
+/// Item `n` (1-based, as Enumeration values are) of a list of choices.
+pub fn enum_item<T: Copy>(all: &[T], n: i32) -> Result<T, String> {
+    // No `n - 1` on i32: i32::MIN would overflow.
+    let i = usize::try_from(n)
+        .ok()
+        .and_then(|n| n.checked_sub(1))
+        .filter(|&i| i < all.len());
+    i.map(|i| all[i])
+        .ok_or(format!("must be 1 … {}, got {n}", all.len()))
+}
+
+/// The Enumeration value (1-based item number) of `x` in `all`.
+pub fn enum_value<T: PartialEq>(all: &[T], x: &T) -> i32 {
+    all.iter().position(|k| k == x).map_or(1, |i| i as i32 + 1)
+}
+
 /// One variable as the importer sees it.
 #[derive(Clone, Debug)]
 pub struct VariableInfo {
@@ -236,40 +273,52 @@ pub trait Model: Clone + Send + 'static {
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String>;
 }
 
-/// Reads `(variable name, value)` pairs into a model through the same path as fmi2Set*, for tests
-/// and packaging tools.
+/// Reads `(variable name, value)` pairs into a model through the same checks as fmi2Set* (finite,
+/// within the declared min/max), for tests and packaging tools.
 pub fn set_by_name<M: Model>(model: &mut M, name: &str, value: Value) -> Result<(), String> {
-    let i = M::info()
+    let info = M::info();
+    let i = info
         .variables
         .iter()
         .position(|v| v.name == name)
         .ok_or_else(|| format!("no variable '{name}'"))?;
-    model.set(i, value)
+    match instance::out_of_range::<M>(&info.variables[i], &value) {
+        Some(reason) => Err(format!("{name} = {reason}")),
+        None => model.set(i, value),
+    }
 }
 
-/// A GUID that changes whenever the variable table changes: FNV-1a (128 bit) of its rows.
-pub fn guid_of(variables: &[VariableInfo]) -> String {
-    let mut h: u128 = 0x6c62272e07bb014262b821756295c58d;
-    let prime: u128 = 0x0000000001000000000000000000013B;
-    for v in variables {
-        let row = format!(
-            "{}|{}|{:?}|{:?}|{:?}|{:?}|{:?};",
-            v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit, v.dependencies
-        );
-        for b in row.bytes() {
-            h ^= b as u128;
-            h = h.wrapping_mul(prime);
+/// A [`ModelInfo`] with the version, authors and license of the calling crate's manifest
+/// (`authors`, `license`), the copyright of its authors.
+#[macro_export]
+macro_rules! crate_model_info {
+    ($name:expr, $description:expr, $variables:expr) => {
+        $crate::ModelInfo {
+            version: env!("CARGO_PKG_VERSION").into(),
+            author: env!("CARGO_PKG_AUTHORS").into(),
+            copyright: format!("Copyright (c) 2026 the {}", env!("CARGO_PKG_AUTHORS")),
+            license: env!("CARGO_PKG_LICENSE").into(),
+            ..$crate::ModelInfo::new($name, $description, $variables)
         }
-    }
-    let x = format!("{h:032x}");
-    format!(
-        "{{{}-{}-{}-{}-{}}}",
-        &x[0..8],
-        &x[8..12],
-        &x[12..16],
-        &x[16..20],
-        &x[20..32]
-    )
+    };
+}
+
+/// Namespace of the GUIDs of this layer's FMUs (a fixed random UUID: GUIDs never collide with
+/// other v5 names).
+const GUID_NAMESPACE: uuid::Uuid = uuid::Uuid::from_u128(0x4c1f_5a1e_9b0d_4e57_a6c3_2f8e_1d7b_90a4);
+
+/// A GUID that changes whenever the variable table changes: the name-based UUID (v5) of its rows.
+pub fn guid_of(variables: &[VariableInfo]) -> String {
+    let rows: String = variables
+        .iter()
+        .map(|v| {
+            format!(
+                "{}|{}|{:?}|{:?}|{:?}|{:?}|{:?};",
+                v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit, v.dependencies
+            )
+        })
+        .collect();
+    format!("{{{}}}", uuid::Uuid::new_v5(&GUID_NAMESPACE, rows.as_bytes()))
 }
 
 /// Start values read from a model at its defaults (None for calculated variables).
@@ -289,4 +338,41 @@ pub fn model_description<M: Model>() -> String {
 /// documentation/index.html of a model: `intro_html` and the table of variables.
 pub fn documentation<M: Model>(intro_html: &str) -> String {
     doc::html(M::info(), intro_html, &start_values::<M>())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn guid_is_a_v5_uuid_of_the_table() {
+        let row = |unit: &str| {
+            let v = VariableInfo::new("x.p", Type::Real, Causality::Output, Variability::Continuous, "p");
+            vec![v.unit(unit)]
+        };
+        let g = guid_of(&row("m"));
+        assert_eq!(g, guid_of(&row("m")), "the same table, the same GUID");
+        assert_ne!(g, guid_of(&row("N")), "another unit, another GUID");
+        let u = uuid::Uuid::parse_str(g.trim_matches(|c| c == '{' || c == '}')).unwrap();
+        assert_eq!((g.len(), u.get_version_num()), (38, 5));
+    }
+
+    #[test]
+    fn enumeration_values_are_one_based_items() {
+        let all = ['a', 'b', 'c'];
+        assert_eq!((enum_item(&all, 1), enum_item(&all, 3)), (Ok('a'), Ok('c')));
+        assert_eq!(enum_item(&all, 0), Err("must be 1 … 3, got 0".to_string()));
+        assert!(enum_item(&all, 4).is_err() && enum_item(&all, i32::MIN).is_err());
+        assert_eq!(all.map(|c| enum_value(&all, &c)), [1, 2, 3]);
+    }
+
+    #[test]
+    fn numbers_kept_as_f64_convert_to_and_from_values() {
+        assert_eq!(Value::of_type(Type::Integer, 4096.0), Value::Integer(4096));
+        assert_eq!(Value::of_type(Type::Boolean, 1.0), Value::Boolean(true));
+        assert_eq!(Value::of_type(Type::Real, 0.5), Value::Real(0.5));
+        assert_eq!(Value::Boolean(true).number(), Ok(1.0));
+        assert_eq!(Value::Integer(-3).number(), Ok(-3.0));
+        assert!(Value::String("1".into()).number().is_err());
+    }
 }

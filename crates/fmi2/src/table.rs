@@ -38,28 +38,46 @@ pub fn variable<S>(row: &Row<S>, axis: &str) -> VariableInfo {
     v.range(*min, *max)
 }
 
-/// The table expanded in order: a row without `#` once (axis 0, name ""); a run of `#` rows once
-/// of one causality for each axis (all rows of the run for the first axis, then the second, …). `expand(row, axis
-/// index, axis name)` turns one row on one axis into its variables (usually
-/// `[(variable(row, axis), slot)]`; a row may stand for several).
+/// One variable of an expanded table: what the importer sees, what the model reads or writes, and
+/// on which axis (0 for rows without `#`).
+#[derive(Clone, Debug)]
+pub struct Entry<S> {
+    pub var: VariableInfo,
+    pub slot: S,
+    pub axis: usize,
+}
+
+/// A row as its one variable (the usual `expand` of [`expand`]).
+pub fn one<S: Copy>(row: &Row<S>, axis: &str) -> Vec<(VariableInfo, S)> {
+    vec![(variable(row, axis), row.7)]
+}
+
+/// The table expanded in order: a row without `#` once (axis 0, name ""); a run of `#` rows of one
+/// causality once for each axis (all rows of the run for the first axis, then the second, …).
+/// `expand(row, axis name)` turns one row on one axis into its variables (usually [`one`]; a row
+/// may stand for several, e.g. one per drive parameter).
 pub fn expand<S: Copy>(
     rows: &[Row<S>],
     axes: &[&str],
-    mut expand: impl FnMut(&Row<S>, usize, &str) -> Vec<(VariableInfo, S)>,
-) -> Vec<(VariableInfo, S)> {
+    mut expand: impl FnMut(&Row<S>, &str) -> Vec<(VariableInfo, S)>,
+) -> Vec<Entry<S>> {
     let mut out = Vec::new();
+    let mut push = |row: &Row<S>, axis: usize, name: &str| {
+        let vars = expand(row, name).into_iter();
+        out.extend(vars.map(|(var, slot)| Entry { var, slot, axis }));
+    };
     let mut k = 0;
     while k < rows.len() {
         let per_axis = |r: &&Row<S>| r.0.contains('#') && r.2 == rows[k].2;
         let run = rows[k..].iter().take_while(per_axis).count();
         if run == 0 {
-            out.extend(expand(&rows[k], 0, ""));
+            push(&rows[k], 0, "");
             k += 1;
             continue;
         }
         for (i, axis) in axes.iter().enumerate() {
             for row in &rows[k..k + run] {
-                out.extend(expand(row, i, axis));
+                push(row, i, axis);
             }
         }
         k += run;
@@ -68,8 +86,13 @@ pub fn expand<S: Copy>(
 }
 
 /// Index of the variable called `name` (for dependencies).
-pub fn index_of<S>(table: &[(VariableInfo, S)], name: &str) -> Option<usize> {
-    table.iter().position(|(v, _)| v.name == name)
+pub fn index_of<S>(table: &[Entry<S>], name: &str) -> Option<usize> {
+    table.iter().position(|e| e.var.name == name)
+}
+
+/// The variables of an expanded table, in order (for [`crate::ModelInfo::new`]).
+pub fn variables<S>(table: &[Entry<S>]) -> Vec<VariableInfo> {
+    table.iter().map(|e| e.var.clone()).collect()
 }
 
 #[cfg(test)]
@@ -106,22 +129,20 @@ mod tests {
             ("#.b", Type::Real, Output, Continuous, "", None, None, (0, 2), "b"),
             ("q", Type::Boolean, Parameter, Fixed, "", None, None, (9, 3), "q"),
         ];
-        let t = expand(rows, &["x", "y"], |r, i, axis| {
-            vec![(variable(r, axis), (i, r.7 .1))]
-        });
-        let names: Vec<&str> = t.iter().map(|(v, _)| v.name.as_str()).collect();
+        let t = expand(rows, &["x", "y"], one);
+        let names: Vec<&str> = t.iter().map(|e| e.var.name.as_str()).collect();
         assert_eq!(
             names,
             ["p", "x.a", "y.a", "x.b", "y.b", "q"],
             "runs break where the causality changes"
         );
-        assert_eq!(t[2].1, (1, 1));
-        assert_eq!(t[2].0.description, "a of y");
+        assert_eq!((t[2].slot, t[2].axis), ((0, 1), 1));
+        assert_eq!(t[2].var.description, "a of y");
         assert_eq!(
-            (t[0].0.min, t[0].0.display_unit.as_deref()),
+            (t[0].var.min, t[0].var.display_unit.as_deref()),
             (Some(0.0), Some("mm"))
         );
-        assert_eq!(t[3].0.dependencies, Some(vec![]));
+        assert_eq!(t[3].var.dependencies, Some(vec![]));
         assert_eq!(index_of(&t, "y.b"), Some(4));
     }
 }

@@ -1,49 +1,36 @@
 //! `fmuResourceLocation` URIs: `file:///abs/path`, `file:/abs/path`, `file://localhost/abs/path`,
-//! percent-encoded (RFC 3986), with or without a trailing slash.
+//! percent-encoded (RFC 3986), with or without a trailing slash. Parsed by the `url` crate; this
+//! module only refuses what it would read leniently (a relative path after `file:`, a `%` that
+//! starts no escape) instead of guessing.
 
 use std::path::PathBuf;
+use url::Url;
 
 /// The folder a `file:` URI names, or a message saying why it is not one.
 pub fn file_uri_to_path(uri: &str) -> Result<PathBuf, String> {
     let rest = uri
         .strip_prefix("file:")
         .ok_or_else(|| format!("resource location '{uri}' is not a file: URI"))?;
-    let path = if let Some(after) = rest.strip_prefix("//") {
-        // file://host/path: only an empty host or localhost name this machine.
-        let slash = after.find('/').unwrap_or(after.len());
-        let host = &after[..slash];
-        if !(host.is_empty() || host.eq_ignore_ascii_case("localhost")) {
-            return Err(format!("resource location '{uri}' names another host '{host}'"));
-        }
-        &after[slash..]
-    } else {
-        rest
-    };
-    if !path.starts_with('/') {
+    if !rest.starts_with('/') {
         return Err(format!("resource location '{uri}' is not an absolute path"));
     }
-    Ok(PathBuf::from(percent_decode(path)?))
+    if let Some(bad) = bad_escape(uri) {
+        return Err(format!(
+            "bad percent-encoding '{bad}' in resource location '{uri}'"
+        ));
+    }
+    let url = Url::parse(uri).map_err(|e| format!("resource location '{uri}': {e}"))?;
+    // to_file_path refuses hosts other than an empty one or localhost.
+    url.to_file_path()
+        .map_err(|()| format!("resource location '{uri}' names another host or no local path"))
 }
 
-fn percent_decode(s: &str) -> Result<String, String> {
-    let b = s.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut i = 0;
-    while i < b.len() {
-        if b[i] == b'%' {
-            let hex = s
-                .get(i + 1..i + 3)
-                .ok_or_else(|| format!("bad percent-encoding in '{s}'"))?;
-            let v =
-                u8::from_str_radix(hex, 16).map_err(|_| format!("bad percent-encoding '%{hex}' in '{s}'"))?;
-            out.push(v);
-            i += 3;
-        } else {
-            out.push(b[i]);
-            i += 1;
-        }
-    }
-    String::from_utf8(out).map_err(|_| format!("'{s}' does not decode to UTF-8"))
+/// The first `%` not followed by two hex digits, with what follows it.
+fn bad_escape(s: &str) -> Option<&str> {
+    s.match_indices('%').map(|(i, _)| &s[i..]).find(|t| {
+        let hex = t.as_bytes().get(1..3);
+        !hex.is_some_and(|h| h.iter().all(u8::is_ascii_hexdigit))
+    })
 }
 
 #[cfg(test)]
@@ -63,6 +50,21 @@ mod tests {
         assert!(file_uri_to_path("http://x/y").is_err());
         assert!(file_uri_to_path("file://server/share").is_err());
         assert!(file_uri_to_path("file:///a%2").is_err());
+        assert!(file_uri_to_path("file:///a%zz/b").is_err());
         assert!(file_uri_to_path("file:relative").is_err());
+    }
+
+    /// A folder whose name holds spaces, a literal `%` and non-ASCII letters, encoded as Python's
+    /// `pathlib.Path.as_uri()` and fmpy write it (RFC 3986 percent-encoding of UTF-8 bytes).
+    #[test]
+    fn percent_encoded_names_round_trip() {
+        let dir = "/tmp/50% done/Überlauf #2/resources";
+        let uri = "file:///tmp/50%25%20done/%C3%9Cberlauf%20%232/resources";
+        assert_eq!(file_uri_to_path(uri).unwrap(), PathBuf::from(dir));
+        // `%25` decodes to a literal `%` once, not again: "%2541" is "%41", not "A".
+        assert_eq!(
+            file_uri_to_path("file:///a%2541").unwrap(),
+            PathBuf::from("/a%41")
+        );
     }
 }

@@ -6,9 +6,10 @@
 pub mod modal;
 pub mod ranges;
 
+use fmi2::table::{index_of, Entry};
 use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
 use fmi2::Variability::{Continuous as CONT, Fixed as FIX};
-use fmi2::{ModelInfo, Type, Value, VariableInfo};
+use fmi2::{ModelInfo, Type, Value};
 use modal::{Mode, ModeState};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -74,15 +75,15 @@ impl MachineStructure {
     }
 }
 
-/// What a row of the table reads or writes: (axis, mode, field) or the axis.
-#[derive(Clone, Copy)]
+/// What a row of the table reads or writes on its axis: (mode, field) or the axis' own value.
+#[derive(Clone, Copy, Debug)]
 enum Slot {
-    Mode(usize, usize, usize),
-    Coupling(usize),
-    Force(usize),
-    Deflection(usize),
-    Acceleration(usize),
-    LoadForce(usize),
+    Mode(usize, usize),
+    Coupling,
+    Force,
+    Deflection,
+    Acceleration,
+    LoadForce,
 }
 
 const NO: Option<f64> = None;
@@ -91,45 +92,29 @@ const ZERO: Option<f64> = Some(0.0);
 /// The variables, one row per axis each (see [`fmi2::table::Row`]).
 #[rustfmt::skip]
 const ROWS: &[fmi2::table::Row<Slot>] = &[
-    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 0, 0), "# mode 1: natural frequency"),
-    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 0, 1), "# mode 1: damping ratio"),
-    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 0, 2), "# mode 1: modal mass"),
-    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 1, 0), "# mode 2: natural frequency"),
-    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 1, 1), "# mode 2: damping ratio"),
-    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 1, 2), "# mode 2: modal mass"),
-    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Coupling(0),   "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
-    ("#.driveForce",      Type::Real, IN,  CONT, "N",    NO,   NO, Slot::Force(0),      "force of the # drive on the frame"),
-    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,   NO, Slot::Deflection(0), "tool-point deflection of the frame along #"),
-    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,   NO, Slot::Acceleration(0), "frame acceleration along # (direct feed-through of #.driveForce)"),
-    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,   NO, Slot::LoadForce(0),  "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
+    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 0),   "# mode 1: natural frequency"),
+    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 1),   "# mode 1: damping ratio"),
+    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 2),   "# mode 1: modal mass"),
+    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(1, 0),   "# mode 2: natural frequency"),
+    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(1, 1),   "# mode 2: damping ratio"),
+    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(1, 2),   "# mode 2: modal mass"),
+    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Coupling,     "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
+    ("#.driveForce",      Type::Real, IN,  CONT, "N",    NO,   NO, Slot::Force,        "force of the # drive on the frame"),
+    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,   NO, Slot::Deflection,   "tool-point deflection of the frame along #"),
+    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,   NO, Slot::Acceleration, "frame acceleration along # (direct feed-through of #.driveForce)"),
+    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,   NO, Slot::LoadForce,    "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
 ];
-
-impl Slot {
-    fn on_axis(self, i: usize) -> Slot {
-        match self {
-            Slot::Mode(_, k, f) => Slot::Mode(i, k, f),
-            Slot::Coupling(_) => Slot::Coupling(i),
-            Slot::Force(_) => Slot::Force(i),
-            Slot::Deflection(_) => Slot::Deflection(i),
-            Slot::Acceleration(_) => Slot::Acceleration(i),
-            Slot::LoadForce(_) => Slot::LoadForce(i),
-        }
-    }
-}
 
 /// The table expanded; a = Σ (F/m − 2ζω q̇ − ω² q): each axis' acceleration depends directly on
 /// the drive force of the same axis, every other output on no input.
-fn table() -> &'static [(VariableInfo, Slot)] {
-    static T: OnceLock<Vec<(VariableInfo, Slot)>> = OnceLock::new();
+fn table() -> &'static [Entry<Slot>] {
+    static T: OnceLock<Vec<Entry<Slot>>> = OnceLock::new();
     T.get_or_init(|| {
-        use fmi2::table::{expand, index_of, variable};
-        let mut t = expand(ROWS, &AXES, |row, i, axis| {
-            vec![(variable(row, axis), row.7.on_axis(i))]
-        });
+        let mut t = fmi2::table::expand(ROWS, &AXES, fmi2::table::one);
         for a in AXES {
             let force = index_of(&t, &format!("{a}.driveForce"));
             let acceleration = index_of(&t, &format!("{a}.acceleration")).expect("in the table");
-            t[acceleration].0.dependencies = force.map(|f| vec![f]);
+            t[acceleration].var.dependencies = force.map(|f| vec![f]);
         }
         t
     })
@@ -142,15 +127,8 @@ impl fmi2::Model for MachineStructureFmu {
     fn info() -> &'static ModelInfo {
         static INFO: OnceLock<ModelInfo> = OnceLock::new();
         INFO.get_or_init(|| {
-            let variables = table().iter().map(|(v, _)| v.clone()).collect();
             let description = "Modal model of a machine frame driven by the axis drive forces";
-            ModelInfo {
-                version: env!("CARGO_PKG_VERSION").into(),
-                author: "cnc-motion authors".into(),
-                copyright: "Copyright (c) 2026 the cnc-motion authors".into(),
-                license: "MIT".into(),
-                ..ModelInfo::new("MachineStructure", description, variables)
-            }
+            fmi2::crate_model_info!("MachineStructure", description, fmi2::table::variables(table()))
         })
     }
 
@@ -159,16 +137,16 @@ impl fmi2::Model for MachineStructureFmu {
     }
 
     fn get(&self, index: usize) -> Value {
-        let m = &self.0;
-        Value::Real(match table()[index].1 {
-            Slot::Mode(i, k, 0) => m.modes[i][k].frequency,
-            Slot::Mode(i, k, 1) => m.modes[i][k].damping,
-            Slot::Mode(i, k, _) => m.modes[i][k].mass,
-            Slot::Coupling(i) => m.coupling_mass[i],
-            Slot::Force(i) => m.drive_force[i],
-            Slot::Deflection(i) => m.deflection(i),
-            Slot::Acceleration(i) => m.acceleration(i),
-            Slot::LoadForce(i) => m.load_force(i),
+        let (m, e, i) = (&self.0, &table()[index], table()[index].axis);
+        Value::Real(match e.slot {
+            Slot::Mode(k, 0) => m.modes[i][k].frequency,
+            Slot::Mode(k, 1) => m.modes[i][k].damping,
+            Slot::Mode(k, _) => m.modes[i][k].mass,
+            Slot::Coupling => m.coupling_mass[i],
+            Slot::Force => m.drive_force[i],
+            Slot::Deflection => m.deflection(i),
+            Slot::Acceleration => m.acceleration(i),
+            Slot::LoadForce => m.load_force(i),
         })
     }
 
@@ -179,9 +157,9 @@ impl fmi2::Model for MachineStructureFmu {
         if !x.is_finite() {
             return Err(format!("{x} is not finite"));
         }
-        let m = &mut self.0;
-        match table()[index].1 {
-            Slot::Mode(i, k, f) => {
+        let (m, e, i) = (&mut self.0, &table()[index], table()[index].axis);
+        match e.slot {
+            Slot::Mode(k, f) => {
                 let mut mode = m.modes[i][k];
                 match f {
                     0 => mode.frequency = x,
@@ -191,11 +169,11 @@ impl fmi2::Model for MachineStructureFmu {
                 mode.check()?;
                 m.modes[i][k] = mode;
             }
-            Slot::Coupling(i) => {
+            Slot::Coupling => {
                 ranges::within("couplingMass", x, ranges::COUPLING_MASS_KG, "kg")?;
                 m.coupling_mass[i] = x;
             }
-            Slot::Force(i) => {
+            Slot::Force => {
                 ranges::check_drive_force(x)?;
                 m.drive_force[i] = x;
             }
