@@ -15,14 +15,28 @@ fn profile_names_are_the_machine_file_names() {
         assert_eq!(ProfileKind::from_name(kind.name()), Some(kind));
     }
     assert_eq!(ProfileKind::from_name("Scurve7"), None);
-    let err = Machine::from_toml("profile = \"scurve5\"\n", "m.toml").unwrap_err().to_string();
-    assert!(err.starts_with("m.toml:1:11: ") && err.contains("scurve7"), "{err}");
+    let err = Machine::from_toml("profile = \"scurve5\"\n", "m.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("m.toml:1:11: ") && err.contains("scurve7"),
+        "{err}"
+    );
 }
 
 #[test]
 fn corner_names_are_the_machine_file_names() {
     let names: Vec<_> = CornerMode::ALL.iter().map(|c| c.name()).collect();
-    assert_eq!(names, ["exact_stop", "acceleration_period", "circular", "polynomial", "smooth"]);
+    assert_eq!(
+        names,
+        [
+            "exact_stop",
+            "acceleration_period",
+            "circular",
+            "polynomial",
+            "smooth"
+        ]
+    );
     for corner in CornerMode::ALL {
         let m = Machine::from_toml(&format!("corner = \"{}\"\n", corner.name()), "m.toml").unwrap();
         assert_eq!(m.corner, corner);

@@ -13,8 +13,15 @@ fn mat_mul(a: &Mat, b: &Mat) -> Mat {
 
 /// The code this replaced: ‖M/2^s‖ ≤ 1/2, degree-16 Taylor polynomial, s squarings.
 fn taylor_expm(m: &Mat) -> Mat {
-    let norm = m.iter().map(|r| r.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
-    let s = if norm > 0.5 { (norm / 0.5).log2().ceil() as i32 } else { 0 };
+    let norm = m
+        .iter()
+        .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
+        .fold(0.0, f64::max);
+    let s = if norm > 0.5 {
+        (norm / 0.5).log2().ceil() as i32
+    } else {
+        0
+    };
     let a: Mat = m.map(|r| r.map(|x| x * 0.5f64.powi(s)));
     let mut result: Mat = std::array::from_fn(|i| std::array::from_fn(|j| f64::from(u8::from(i == j))));
     let mut term = result;
@@ -36,19 +43,39 @@ fn drives() -> Vec<(&'static str, ServoParams)> {
     let d = ServoParams::default();
     vec![
         ("default", d),
-        ("stiff screw, light table", ServoParams { axial_stiffness: 1e11, table_mass: 0.5, ..d }),
-        ("heavy table, soft screw", ServoParams { axial_stiffness: 2e7, table_mass: 2000.0, ..d }),
-        ("damped, slow current loop", ServoParams {
-            axial_damping: 5e4,
-            viscous_friction: 800.0,
-            current_time_constant: 5e-3,
-            ..d
-        }),
-        ("fine lead, fast current loop", ServoParams {
-            screw_lead: 0.5e-3,
-            current_time_constant: 1e-5,
-            ..d
-        }),
+        (
+            "stiff screw, light table",
+            ServoParams {
+                axial_stiffness: 1e11,
+                table_mass: 0.5,
+                ..d
+            },
+        ),
+        (
+            "heavy table, soft screw",
+            ServoParams {
+                axial_stiffness: 2e7,
+                table_mass: 2000.0,
+                ..d
+            },
+        ),
+        (
+            "damped, slow current loop",
+            ServoParams {
+                axial_damping: 5e4,
+                viscous_friction: 800.0,
+                current_time_constant: 5e-3,
+                ..d
+            },
+        ),
+        (
+            "fine lead, fast current loop",
+            ServoParams {
+                screw_lead: 0.5e-3,
+                current_time_constant: 1e-5,
+                ..d
+            },
+        ),
     ]
 }
 
@@ -68,7 +95,12 @@ fn nalgebra_exp_equals_the_former_taylor_series() {
                 let scale = old[i].iter().fold(0.0f64, |a, x| a.max(x.abs()));
                 for j in 0..7 {
                     let err = (new[i][j] - old[i][j]).abs() / scale;
-                    assert!(err <= tol, "{name}, h {h}: [{i}][{j}] {} vs {} ({err:e})", new[i][j], old[i][j]);
+                    assert!(
+                        err <= tol,
+                        "{name}, h {h}: [{i}][{j}] {} vs {} ({err:e})",
+                        new[i][j],
+                        old[i][j]
+                    );
                 }
             }
         }
@@ -84,7 +116,11 @@ fn current_loop_lag_closed_form() {
         let decay = (-h / p.current_time_constant).exp();
         assert!((e[4][4] - decay).abs() <= 1e-14, "{name}: {} vs {decay}", e[4][4]);
         assert!((e[4][5] - (1.0 - decay)).abs() <= 1e-14, "{name}: {}", e[4][5]);
-        assert!(e[4][..4].iter().chain(&e[4][6..]).all(|&x| x == 0.0), "{name}: {:?}", e[4]);
+        assert!(
+            e[4][..4].iter().chain(&e[4][6..]).all(|&x| x == 0.0),
+            "{name}: {:?}",
+            e[4]
+        );
     }
 }
 
@@ -94,7 +130,11 @@ fn current_loop_lag_closed_form() {
 #[test]
 fn two_mass_free_response_closed_form() {
     for (name, p0) in drives() {
-        let p = ServoParams { axial_damping: 0.0, viscous_friction: 0.0, ..p0 };
+        let p = ServoParams {
+            axial_damping: 0.0,
+            viscous_friction: 0.0,
+            ..p0
+        };
         let h = 1.0 / p.servo_rate;
         let e = expm(&scaled(&p, h));
         let r = p.screw_lead / (2.0 * std::f64::consts::PI);
@@ -107,10 +147,20 @@ fn two_mass_free_response_closed_form() {
             let (d, vd) = (q1 - q2, v1 - v2);
             let (d_h, vd_h) = (d * c + vd / w * s, -d * w * s + vd * c);
             let (cm_h, share1, share2) = (cm + vcm * h, m2 / (m1 + m2), m1 / (m1 + m2));
-            [cm_h + share1 * d_h, vcm + share1 * vd_h, cm_h - share2 * d_h, vcm - share2 * vd_h]
+            [
+                cm_h + share1 * d_h,
+                vcm + share1 * vd_h,
+                cm_h - share2 * d_h,
+                vcm - share2 * vd_h,
+            ]
         };
         // State j of the model is (θ, ω, x, v); in q coordinates θ = q1/r, ω = q̇1/r.
-        let units = [[r, 0.0, 0.0, 0.0], [0.0, r, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]];
+        let units = [
+            [r, 0.0, 0.0, 0.0],
+            [0.0, r, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ];
         let old = taylor_expm(&scaled(&p, h));
         let (mut worst, mut worst_old) = (0.0f64, 0.0f64);
         for (j, u) in units.iter().enumerate() {
@@ -119,11 +169,19 @@ fn two_mass_free_response_closed_form() {
             let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
             for i in 0..4 {
                 let err = (e[i][j] - want[i]).abs() / scale;
-                assert!(err <= 1e-12, "{name}: Φ[{i}][{j}] {} vs {} ({err:e})", e[i][j], want[i]);
+                assert!(
+                    err <= 1e-12,
+                    "{name}: Φ[{i}][{j}] {} vs {} ({err:e})",
+                    e[i][j],
+                    want[i]
+                );
                 worst = worst.max(err);
                 worst_old = worst_old.max((old[i][j] - want[i]).abs() / scale);
             }
         }
-        assert!(worst <= worst_old, "{name}: nalgebra {worst:e}, Taylor {worst_old:e}");
+        assert!(
+            worst <= worst_old,
+            "{name}: nalgebra {worst:e}, Taylor {worst_old:e}"
+        );
     }
 }

@@ -10,35 +10,44 @@ the start of the step, then the connections are applied), the two-way force coup
     structure.{x,y,z}.loadForce → cnc.{x,y,z}.loadForce,
 and connector values that start at 0 (the frame is at rest, the drives hold still).
 
-    python examples/cosim.py [--master slaves|fmpy-ssp|libcosim] [--stop-time S] [--program FILE.ngc]
+    python examples/cosim.py (or python -m cnc_motion_sim.cosim) [--master slaves|fmpy-ssp|libcosim] [--stop-time S] [--program FILE.ngc]
                              [--profile scurve7] [--out out/]
 
 Results: dict name → numpy array, names as "cnc.x.command.position", "structure.x.deflection",
 and "time" = the communication point at the END of each step.
 """
+from __future__ import annotations
+
 import argparse
 import pathlib
 import sys
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from fmusim import AXES, CNC_FMU, SSP, STRUCTURE_FMU, Slave, Unpacked  # noqa: E402
+from .fmu import AXES, Slave, Unpacked
+from .paths import CNC_FMU, SSP, STRUCTURE_FMU
+from .ssp import CNC_RECORDED, STRUCTURE_RECORDED, Connection, connections
+
+Result = dict[str, Any]
 
 H = 1e-3
 
 
-def coupling():
-    from make_ssp import connections
+def coupling() -> list[Connection]:
     return connections()
 
 
-def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H, stop_time=None,
-                 after=0.3, t_max=120.0, record=None, inputs=None, grid="exact", two_way=True):
+def cosim_slaves(cnc_u: Unpacked, structure_u: Unpacked, cnc_params: Mapping[str, Any] | None = None,
+                 structure_params: Mapping[str, Any] | None = None, h: float = H, stop_time: float | None = None,
+                 after: float = 0.3, t_max: float = 120.0, record: Sequence[str] | None = None,
+                 inputs: Callable[[float, Slave], None] | None = None, grid: str = "exact",
+                 two_way: bool = True) -> Result:
     """Own master. Runs until stop_time, or (stop_time None) until status.finished + `after` s.
 
     `inputs(t, cnc_slave)` may drive CncMotion's free inputs (feedHold, feedOverride) each step.
-    `grid`: "exact" communication points k·h, or "ns" as libcosim computes them (see fmusim.Slave).
+    `grid`: "exact" communication points k·h, or "ns" as libcosim computes them (see fmu.Slave).
     `two_way=False` leaves loadForce out (the frame does not push back on the axes)."""
     cnc = Slave(cnc_u, "cnc")
     st = Slave(structure_u, "structure")
@@ -49,7 +58,6 @@ def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H
         st.initialize(structure_params)
         conns = coupling()
         value = {(fc, fv): 0.0 for fc, fv, _, _ in conns}
-        from make_ssp import CNC_RECORDED, STRUCTURE_RECORDED
         record = record or (["cnc." + n for n in CNC_RECORDED] + ["structure." + n for n in STRUCTURE_RECORDED]
                             + [f"cnc.{fv}" for fc, fv, _, _ in conns if fc == "cnc"]
                             + [f"structure.{fv}" for fc, fv, _, _ in conns if fc == "structure"])
@@ -104,7 +112,7 @@ def cosim_slaves(cnc_u, structure_u, cnc_params=None, structure_params=None, h=H
     return res
 
 
-def _flat_index(readers, record, i):
+def _flat_index(readers: Mapping[str, tuple[list[str], Any]], record: Sequence[str], i: int) -> int:
     """Column of record[i] in the concatenated per-component reader rows."""
     comp, name = record[i].split(".", 1)
     col = 0
@@ -115,7 +123,8 @@ def _flat_index(readers, record, i):
     raise KeyError(record[i])
 
 
-def cosim_fmpy_ssp(ssp=SSP, stop_time=2.0, h=H, parameters=None):
+def cosim_fmpy_ssp(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: float = H,
+                   parameters: Mapping[str, Any] | None = None) -> Result:
     """fmpy.ssp.simulate_ssp. Its rows are stamped with the START of each step; we restamp with the end.
     fmpy.ssp ignores the SSD's parameter bindings: give them again as `parameters`
     {"structure.x.couplingMass": 1.0, ...}."""
@@ -132,7 +141,7 @@ def cosim_fmpy_ssp(ssp=SSP, stop_time=2.0, h=H, parameters=None):
     return res
 
 
-def cosim_libcosim(ssp=SSP, stop_time=2.0, h=H):
+def cosim_libcosim(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: float = H) -> Result:
     """libcosim 0.x through libcosimpy: SSP loaded by libcosim, fixed-step (Jacobi) algorithm, time in ns."""
     from libcosimpy.CosimEnums import CosimVariableType
     from libcosimpy.CosimExecution import CosimExecution
@@ -145,7 +154,6 @@ def cosim_libcosim(ssp=SSP, stop_time=2.0, h=H):
     ex = CosimExecution.from_ssp_file(str(ssp), step_size=h_ns)
     obs = CosimObserver.create_last_value()
     ex.add_observer(obs)
-    from make_ssp import CNC_RECORDED, STRUCTURE_RECORDED
     wanted = {"cnc": CNC_RECORDED, "structure": STRUCTURE_RECORDED + [f"{a}.loadForce" for a in AXES]}
     wanted["cnc"] = wanted["cnc"] + [f"{a}.driveForce" for a in AXES]
     plan = []  # (key, slave index, reader kind, reference)
@@ -176,7 +184,8 @@ def cosim_libcosim(ssp=SSP, stop_time=2.0, h=H):
     return res
 
 
-def residual_vibration(res, window=0.2, min_standstill=0.02, prefix="cnc."):
+def residual_vibration(res: Mapping[str, Any], window: float = 0.2, min_standstill: float = 0.02,
+                       prefix: str = "cnc.") -> tuple[float, int]:
     """RMS of the frame deflection |d| in the windows after each stop of the command.
 
     A stop is where the commanded axis speeds fall to zero and stay there at least `min_standstill`;
@@ -207,7 +216,7 @@ def residual_vibration(res, window=0.2, min_standstill=0.02, prefix="cnc."):
     return float(np.sqrt(np.mean(s ** 2))), stops
 
 
-def main():
+def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--master", choices=["slaves", "fmpy-ssp", "libcosim"], default="slaves")
     ap.add_argument("--stop-time", type=float)

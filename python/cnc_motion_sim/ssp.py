@@ -1,6 +1,6 @@
 """Build examples/cosim.ssp: CncMotion.fmu and MachineStructure.fmu with the two-way force coupling.
 
-    python examples/make_ssp.py [--cnc target/fmu/CncMotion.fmu] [--structure ...] [--out examples/cosim.ssp]
+    python examples/make_ssp.py  (or python -m cnc_motion_sim.ssp) [--cnc target/fmu/CncMotion.fmu] [--structure ...] [--out examples/cosim.ssp]
 
 Connections (SSP 1.0, read by fmpy.ssp and libcosim):
     cnc.{x,y,z}.driveForce      → structure.{x,y,z}.driveForce
@@ -10,16 +10,21 @@ Besides the connected ports, the components list the outputs that fmpy.ssp shoul
 writes every listed input at each step. Start values stay those of the FMUs (no parameter bindings):
 fmpy.ssp does not apply bindings and both masters must run the same system.
 """
+from __future__ import annotations
+
 import argparse
 import pathlib
-import sys
 import zipfile
+from collections.abc import Mapping
+from typing import Any
 from xml.sax.saxutils import quoteattr
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from fmpy import read_model_description  # noqa: E402
+from fmpy import read_model_description
 
-from fmusim import AXES, CNC_FMU, SSP, STRUCTURE_FMU  # noqa: E402
+from .fmu import AXES
+from .paths import CNC_FMU, SSP, STRUCTURE_FMU
+
+Connection = tuple[str, str, str, str]
 
 CNC_RECORDED = [f"{a}.command.{q}" for a in AXES for q in ("position", "velocity", "acceleration", "jerk")] + [
     "path.feed", "path.distance", "status.line", "status.finished"] + [
@@ -31,7 +36,7 @@ SSD_NS = ('xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
           'xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues"')
 
 
-def connections():
+def connections() -> list[Connection]:
     """(from component, from variable, to component, to variable) for the coupling."""
     out = []
     for a in AXES:
@@ -40,13 +45,13 @@ def connections():
     return out
 
 
-def _connector(var):
+def _connector(var: Any) -> str:
     kind = var.causality
     ty = {"Real": "Real", "Integer": "Integer", "Boolean": "Boolean", "Enumeration": "Integer"}[var.type]
     return f'        <ssd:Connector name={quoteattr(var.name)} kind="{kind}"><ssc:{ty}/></ssd:Connector>'
 
 
-def bindings_xml(params):
+def bindings_xml(params: Mapping[str, Any] | None) -> str:
     """Inline parameter values of a component (Python ints as Integer, the rest as Real; e.g. the
     Integer `machine.profileIndex`, which importers without Enumerations can set). libcosim applies
     them; fmpy.ssp does not (pass the same values to simulate_ssp as parameter_set, see
@@ -54,7 +59,7 @@ def bindings_xml(params):
     if not params:
         return ""
 
-    def value(v):
+    def value(v: Any) -> str:
         return f'<ssv:Integer value="{v}"/>' if isinstance(v, int) else f'<ssv:Real value="{float(v)!r}"/>'
     rows = "\n".join(f'              <ssv:Parameter name={quoteattr(k)}>{value(v)}</ssv:Parameter>'
                      for k, v in params.items())
@@ -72,7 +77,8 @@ def bindings_xml(params):
 """
 
 
-def component_xml(name, fmu_path, wanted, params=None):
+def component_xml(name: str, fmu_path: pathlib.Path, wanted: list[str],
+                  params: Mapping[str, Any] | None = None) -> str:
     md = read_model_description(str(fmu_path))
     by_name = {v.name: v for v in md.modelVariables}
     missing = [w for w in wanted if w not in by_name]
@@ -88,9 +94,10 @@ def component_xml(name, fmu_path, wanted, params=None):
     return "\n".join(lines)
 
 
-def ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params=None, cnc_params=None):
+def ssd_text(cnc_fmu: pathlib.Path, structure_fmu: pathlib.Path, stop_time: float,
+             structure_params: Mapping[str, Any] | None = None, cnc_params: Mapping[str, Any] | None = None) -> str:
     conns = connections()
-    ports = {"cnc": [], "structure": []}
+    ports: dict[str, list[str]] = {"cnc": [], "structure": []}
     for fc, fv, tc, tv in conns:
         ports[fc].append(fv)
         ports[tc].append(tv)
@@ -115,23 +122,24 @@ def ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params=None, cnc_param
 """
 
 
-def make_ssp(cnc_fmu=CNC_FMU, structure_fmu=STRUCTURE_FMU, out=SSP, stop_time=8.0, structure_params=None,
-             cnc_params=None):
+def make_ssp(cnc_fmu: str | pathlib.Path = CNC_FMU, structure_fmu: str | pathlib.Path = STRUCTURE_FMU,
+             out: str | pathlib.Path = SSP, stop_time: float = 8.0, structure_params: Mapping[str, Any] | None = None,
+             cnc_params: Mapping[str, Any] | None = None) -> pathlib.Path:
     """`structure_params`, `cnc_params`: {variable: value} bound in the SSP (e.g. {"x.couplingMass": 1.0},
     {"machine.profileIndex": 5})."""
-    cnc_fmu, structure_fmu, out = pathlib.Path(cnc_fmu), pathlib.Path(structure_fmu), pathlib.Path(out)
-    text = ssd_text(cnc_fmu, structure_fmu, stop_time, structure_params, cnc_params)
+    cnc_path, structure_path, out = pathlib.Path(cnc_fmu), pathlib.Path(structure_fmu), pathlib.Path(out)
+    text = ssd_text(cnc_path, structure_path, stop_time, structure_params, cnc_params)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_suffix(".tmp")
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("SystemStructure.ssd", text)
-        z.write(cnc_fmu, f"resources/{cnc_fmu.name}")
-        z.write(structure_fmu, f"resources/{structure_fmu.name}")
+        z.write(cnc_path, f"resources/{cnc_path.name}")
+        z.write(structure_path, f"resources/{structure_path.name}")
     tmp.replace(out)
     return out
 
 
-def main():
+def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cnc", default=str(CNC_FMU))
     ap.add_argument("--structure", default=str(STRUCTURE_FMU))

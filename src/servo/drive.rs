@@ -60,7 +60,10 @@ pub const MAX_SQUARINGS: i32 = 64;
 /// meet a singular matrix; an overflow in the squarings ends as ∞/NaN entries, never a panic.
 pub fn expm(m: &Mat) -> Mat {
     let m = SMatrix::<f64, NA, NA>::from_fn(|i, j| m[i][j]);
-    let norm = m.row_iter().map(|r| r.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
+    let norm = m
+        .row_iter()
+        .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
+        .fold(0.0, f64::max);
     if norm.is_nan() || norm > 0.5 * 2f64.powi(MAX_SQUARINGS) {
         return [[f64::NAN; NA]; NA];
     }

@@ -5,9 +5,9 @@ import json
 import numpy as np
 import pytest
 
-import cosim
-import fmusim
-from conftest import ROOT
+from cnc_motion_sim import cosim
+import cnc_motion_sim as sim
+from cnc_motion_sim.paths import ROOT
 
 T = 1.5  # s of the default program: plunge, first edges and corners
 
@@ -60,7 +60,7 @@ STABLE = {f"{a}.couplingMass": 1.0 for a in "xyz"}  # a two-way loop that is sta
 
 @pytest.fixture(scope="module")
 def stable_ssp(fmus, tmp_path_factory):
-    from make_ssp import make_ssp
+    from cnc_motion_sim.ssp import make_ssp
     return make_ssp(out=tmp_path_factory.mktemp("ssp") / "stable.ssp", structure_params=STABLE)
 
 
@@ -81,7 +81,7 @@ def test_masters_agree_on_a_stable_two_way_loop(cnc, structure, stable_ssp, grid
 def test_libcosim_sets_the_profile_through_the_integer_index(cnc, structure, tmp_path):
     """libcosim ignores Enumerations: the Integer machine.profileIndex bound in the SSP selects the
     trapezoid there, equal to the own master setting the Enumeration, and unlike the default."""
-    from make_ssp import make_ssp
+    from cnc_motion_sim.ssp import make_ssp
     ssp_ = make_ssp(out=tmp_path / "trapezoid.ssp", cnc_params={"machine.profileIndex": 5})
     own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"machine.profile": "trapezoid"}, stop_time=T, grid="ns")
     lib = cosim.cosim_libcosim(ssp_, stop_time=T)
@@ -142,13 +142,13 @@ RESIDUAL = {}
 
 
 @pytest.mark.parametrize("program", ["default", "stops"])
-def test_residual_vibration_lower_than_trapezoid(cnc, structure, program):
+def test_residual_vibration_lower_than_trapezoid(cnc, structure, profiles, program):
     """Residual vibration of the frame after each standstill of the command (RMS of |deflection| in
     0.2 s windows), driven by the axes one-way: the measure of the command profile, independent of
     the stability of the loadForce loop tested above. `stops`: exact stops and dwells."""
     rms = {}
     stops = {}
-    for kind in ["trapezoid", "scurve7", "quintic", "jerk15", "mixed57"]:
+    for kind in profiles:
         params = {"machine.profile": kind}
         if program == "stops":
             params["program"] = STOPS

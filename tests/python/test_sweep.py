@@ -1,7 +1,5 @@
 """The Dask sweep on a 2-worker LocalCluster gives the serial results, case for case."""
-import fmusim
-import sweep
-from conftest import CORPUS_PROGRAMS  # noqa: F401
+from cnc_motion_sim import sweep
 
 
 def test_sweep_local_cluster_equals_serial(fmus, tmp_path):

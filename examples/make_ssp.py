@@ -1,0 +1,6 @@
+"""Command line of cnc_motion_sim.ssp (the package in python/, installed in .venv by `make venv`):
+`python examples/make_ssp.py --help`."""
+from cnc_motion_sim.ssp import main
+
+if __name__ == "__main__":
+    main()

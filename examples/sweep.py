@@ -1,0 +1,6 @@
+"""Command line of cnc_motion_sim.sweep (the package in python/, installed in .venv by `make venv`):
+`python examples/sweep.py --help`."""
+from cnc_motion_sim.sweep import main
+
+if __name__ == "__main__":
+    main()
