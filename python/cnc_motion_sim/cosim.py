@@ -102,7 +102,7 @@ def cosim_slaves(cnc_u: Unpacked, structure_u: Unpacked, cnc_params: Mapping[str
         for s in slaves.values():
             s.free()
     a = np.array(rows)
-    res = {"time": a[:, 0]}
+    res: dict[str, Any] = {"time": a[:, 0]}
     col = 1
     for comp in slaves:
         for n in readers[comp][0]:

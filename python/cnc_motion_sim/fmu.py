@@ -225,7 +225,7 @@ def run_cnc(unpacked: Unpacked, parameters: Values | None = None, h: float = 1e-
     finally:
         s.free()
     a = np.array(rows)
-    res = {"time": a[:, 0]}
+    res: dict[str, Any] = {"time": a[:, 0]}
     for i, n in enumerate(names):
         res[n] = a[:, i + 1]
     res["t_finished"] = t_end

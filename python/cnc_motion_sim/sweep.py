@@ -43,7 +43,7 @@ def simulate_case(case: Case, cnc_fmu: str, structure_fmu: str, two_way: bool = 
     if key not in _unpacked:  # unpack once per worker process
         _unpacked[key] = (Unpacked(cnc_fmu), Unpacked(structure_fmu))
     cnc, st = _unpacked[key]
-    params = {"program": pathlib.Path(program).read_text(), "machine.profile": profile}
+    params: dict[str, Any] = {"program": pathlib.Path(program).read_text(), "machine.profile": profile}
     for a in AXES:
         params[f"{a}.maxJerk"] = jerk * 1e-3
     res = cosim_slaves(cnc, st, params, record=[
