@@ -105,7 +105,8 @@ def main() -> None:
     ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: LocalCluster)")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--jerk", type=float, nargs="+", default=[10000, 40000, 160000], help="mm/s³")
-    ap.add_argument("--profile", nargs="+", choices=profiles(), default=["scurve7", "quintic", "jerk15", "trapezoid"])
+    kinds = profiles() if paths.CNC_FMU.exists() else None  # the items of machine.profile
+    ap.add_argument("--profile", nargs="+", choices=kinds, default=["scurve7", "quintic", "jerk15", "trapezoid"])
     ap.add_argument("--program", nargs="+", default=[str(paths.DEFAULT_PROGRAM)])
     ap.add_argument("--two-way", action="store_true", help="feed the frame's loadForce back to the axes")
     ap.add_argument("--out", default=str(paths.ROOT / "out"))
