@@ -185,3 +185,22 @@ fn two_mass_free_response_closed_form() {
         );
     }
 }
+
+/// A NaN or ∞ anywhere, or a norm beyond 2^64 (more squarings than `MAX_SQUARINGS`), gives a NaN
+/// matrix (reported by the outputs' check), not a panic or a long loop.
+#[test]
+fn non_finite_or_huge_matrices_give_nan() {
+    let p = ServoParams::default();
+    for (i, j, x) in [(3, 2, f64::NAN), (1, 4, f64::INFINITY), (0, 1, 1e30)] {
+        let mut m = scaled(&p, 1.0 / p.servo_rate);
+        m[i][j] = x;
+        let e = expm(&m);
+        assert!(e.iter().flatten().all(|v| v.is_nan()), "[{i}][{j}] = {x}: {e:?}");
+    }
+    // Just inside the bound: finite work (≤ 64 squarings), whatever the entries become.
+    let mut m = [[0.0; 7]; 7];
+    m[0][1] = 2f64.powi(62);
+    let e = expm(&m);
+    assert_eq!(e[0][0], 1.0);
+    assert_eq!(e[0][1], 2f64.powi(62));
+}

@@ -64,7 +64,7 @@ pub fn expm(m: &Mat) -> Mat {
         .row_iter()
         .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
         .fold(0.0, f64::max);
-    if norm.is_nan() || norm > 0.5 * 2f64.powi(MAX_SQUARINGS) {
+    if m.iter().any(|x| !x.is_finite()) || norm > 0.5 * 2f64.powi(MAX_SQUARINGS) {
         return [[f64::NAN; NA]; NA];
     }
     let e = m.exp();
