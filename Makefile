@@ -12,10 +12,11 @@ all: build
 
 venv: $(VENV)/.installed
 
-# Project-local virtual environment with the pinned Python dependencies.
-$(VENV)/.installed: requirements.txt
+# Project-local virtual environment: the package in python/ (editable, with its test extras),
+# every version pinned by constraints.txt.
+$(VENV)/.installed: python/pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
-	$(VENV)/bin/pip install --quiet --disable-pip-version-check -r requirements.txt
+	$(VENV)/bin/pip install --quiet --disable-pip-version-check -c constraints.txt -e 'python[test]'
 	touch $@
 
 # System libraries of the pinned Python packages: Ecos (ecospy) loads oneTBB's libtbb.so.12.

@@ -1,7 +1,7 @@
 """cnc-motion demo: simulate CncMotion.fmu with fmpy on the default program (or another one), print a
 summary, write plots to out/.
 
-Usage: python examples/demo.py [PROGRAM.ngc] [--profile scurve7|quintic|jerk15|mixed57|trapezoid]
+Usage: python examples/demo.py [PROGRAM.ngc] [--profile KIND (an item of the FMU's machine.profile)]
                                [--fmu target/fmu/CncMotion.fmu] [--out out]
 """
 import argparse
@@ -15,8 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from fmpy import read_model_description, simulate_fmu  # noqa: E402
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from fmusim import AXES, CNC_FMU  # noqa: E402
+from cnc_motion_sim import AXES, CNC_FMU, ROOT, profiles  # noqa: E402
 
 H = 1e-3
 MM = 1e3
@@ -100,12 +99,14 @@ def plots(res, out, corner=(40.0, 0.0), zoom=0.1):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("program", nargs="?", help="G-code file (default: the FMU's shipped default.ngc)")
-    ap.add_argument("--profile", choices=["scurve7", "quintic", "jerk15", "mixed57", "trapezoid"])
+    ap.add_argument("--profile", help="feed law: an item of the FMU's machine.profile Enumeration")
     ap.add_argument("--fmu", default=str(CNC_FMU))
-    ap.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parent.parent / "out"))
+    ap.add_argument("--out", default=str(ROOT / "out"))
     args = ap.parse_args()
     if not pathlib.Path(args.fmu).exists():
         sys.exit(f"{args.fmu} missing: run `make fmu` first")
+    if args.profile is not None and args.profile not in profiles(args.fmu):
+        ap.error(f"--profile: {args.profile!r} is not one of {profiles(args.fmu)}")
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     res = simulate(args.fmu, args.program, args.profile)

@@ -9,6 +9,7 @@
 // `unused_crate_dependencies` (workspace lints) sees the library alone: these are the binary's
 // dependencies (one package, one list), and in the unit-test build the integration tests'.
 use clap as _;
+use csv as _;
 use indicatif as _;
 use serde_json as _;
 #[cfg(test)]

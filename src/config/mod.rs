@@ -11,9 +11,23 @@ use crate::feed::ProfileKind;
 use crate::servo::ServoParams;
 use serde::{Deserialize, Serialize};
 
-/// How the planner passes the corner between two blocks whose tangents differ.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// How the planner passes the corner between two blocks whose tangents differ. Names as
+/// `ProfileKind`'s: strum's from the variant names, serde's attribute the same rule.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::VariantArray,
+)]
 #[serde(rename_all = "snake_case")]
+#[strum(serialize_all = "snake_case")]
 pub enum CornerMode {
     /// Stop at every corner.
     ExactStop,
@@ -30,22 +44,11 @@ pub enum CornerMode {
 }
 
 impl CornerMode {
-    pub const ALL: [CornerMode; 5] = [
-        CornerMode::ExactStop,
-        CornerMode::AccelerationPeriod,
-        CornerMode::Circular,
-        CornerMode::Polynomial,
-        CornerMode::Smooth,
-    ];
+    /// Every mode, in the FMU Enumeration's order.
+    pub const ALL: [CornerMode; 5] = crate::feed::variants(<CornerMode as strum::VariantArray>::VARIANTS);
 
     pub fn name(self) -> &'static str {
-        match self {
-            CornerMode::ExactStop => "exact_stop",
-            CornerMode::AccelerationPeriod => "acceleration_period",
-            CornerMode::Circular => "circular",
-            CornerMode::Polynomial => "polynomial",
-            CornerMode::Smooth => "smooth",
-        }
+        self.into()
     }
 
     /// What the mode does (the FMU's Enumeration item description).

@@ -43,8 +43,24 @@ pub struct Limits {
 }
 
 /// The acc/dec law, chosen by `profile` in the machine file and `machine.profile` in the FMU.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+///
+/// The names (machine file, CLI `--kind`, FMU Enumeration items) are strum's, from the variant
+/// names; serde's attribute spells the same rule for the TOML reader (a test checks they agree).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::VariantArray,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum ProfileKind {
     #[default]
     Scurve7,
@@ -55,22 +71,11 @@ pub enum ProfileKind {
 }
 
 impl ProfileKind {
-    pub const ALL: [ProfileKind; 5] = [
-        ProfileKind::Scurve7,
-        ProfileKind::Quintic,
-        ProfileKind::Jerk15,
-        ProfileKind::Mixed57,
-        ProfileKind::Trapezoid,
-    ];
+    /// Every law, in the FMU Enumeration's order (strum's list, as an array).
+    pub const ALL: [ProfileKind; 5] = variants(<ProfileKind as strum::VariantArray>::VARIANTS);
 
     pub fn name(self) -> &'static str {
-        match self {
-            ProfileKind::Scurve7 => "scurve7",
-            ProfileKind::Quintic => "quintic",
-            ProfileKind::Jerk15 => "jerk15",
-            ProfileKind::Mixed57 => "mixed57",
-            ProfileKind::Trapezoid => "trapezoid",
-        }
+        self.into()
     }
 
     /// What the law is (the FMU's Enumeration item description).
@@ -85,8 +90,20 @@ impl ProfileKind {
     }
 
     pub fn from_name(name: &str) -> Option<ProfileKind> {
-        ProfileKind::ALL.into_iter().find(|k| k.name() == name)
+        name.parse().ok()
     }
+}
+
+/// strum's `VARIANTS` slice as an array; a length that does not match fails the build.
+pub(crate) const fn variants<T: Copy, const N: usize>(all: &[T]) -> [T; N] {
+    assert!(all.len() == N, "variant count");
+    let mut out = [all[0]; N];
+    let mut i = 1;
+    while i < N {
+        out[i] = all[i];
+        i += 1;
+    }
+    out
 }
 
 /// What one block asks of the feed law.

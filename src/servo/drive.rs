@@ -6,6 +6,7 @@
 
 use super::{AxisState, ServoParams};
 use crate::tolerance::{PERIOD_SLACK, SAME_STEP};
+use nalgebra::{SMatrix, SVector, Vector2};
 use serde::{Deserialize, Serialize};
 
 /// Plant states: motor angle θ (rad), motor speed ω (rad/s), table position x (m),
@@ -16,72 +17,58 @@ const NA: usize = N + 2;
 
 type Mat = [[f64; NA]; NA];
 
-fn mat_mul(a: &Mat, b: &Mat) -> Mat {
-    let mut c = [[0.0; NA]; NA];
-    for i in 0..NA {
-        for k in 0..NA {
-            let aik = a[i][k];
-            if aik != 0.0 {
-                for j in 0..NA {
-                    c[i][j] += aik * b[k][j];
-                }
-            }
-        }
-    }
-    c
+/// The plant's state, by name (the order of `plant_matrix`'s rows).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PlantState {
+    /// Motor angle θ (rad).
+    pub theta: f64,
+    /// Motor speed ω (rad/s).
+    pub omega: f64,
+    /// Table position x (m).
+    pub x: f64,
+    /// Table velocity v (m/s).
+    pub v: f64,
+    /// Motor torque τ (N·m), behind the current-loop lag.
+    pub tau: f64,
 }
 
-/// Most squarings `expm` does (‖M‖ up to 2^63).
+impl PlantState {
+    fn vector(&self) -> SVector<f64, N> {
+        SVector::from([self.theta, self.omega, self.x, self.v, self.tau])
+    }
+
+    fn from_vector(s: &SVector<f64, N>) -> PlantState {
+        PlantState {
+            theta: s[0],
+            omega: s[1],
+            x: s[2],
+            v: s[3],
+            tau: s[4],
+        }
+    }
+}
+
+/// Most squarings `expm` allows (‖M‖ up to 2^63).
 pub const MAX_SQUARINGS: i32 = 64;
 
-/// e^M by scaling and squaring with a degree-16 Taylor polynomial (‖M/2^s‖ ≤ 1/2, so the
-/// truncation error is below 1e-19 relative before squaring).
+/// e^M (nalgebra: scaling and squaring with Padé approximants, Al-Mohy & Higham 2009).
+///
+/// The norm is checked first: nalgebra squares ⌈log2(‖M‖/θ13)⌉ times, so a norm beyond
+/// 2^MAX_SQUARINGS (or NaN/∞, from parameters no range check let through) gives a NaN matrix,
+/// which the outputs' check reports, instead of billions of squarings. Within that bound the
+/// scaled Padé denominator is well conditioned (‖M/2^s‖ ≤ θ13), so nalgebra's LU solve cannot
+/// meet a singular matrix; an overflow in the squarings ends as ∞/NaN entries, never a panic.
 pub fn expm(m: &Mat) -> Mat {
+    let m = SMatrix::<f64, NA, NA>::from_fn(|i, j| m[i][j]);
     let norm = m
-        .iter()
+        .row_iter()
         .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
         .fold(0.0, f64::max);
-    // The squaring count is bounded: a norm beyond 2^MAX_SQUARINGS (or NaN/∞, from parameters no
-    // range check let through) gives a NaN matrix, which the outputs' check reports, instead of
-    // billions of squarings.
-    if norm.is_nan() || norm > 0.5 * 2f64.powi(MAX_SQUARINGS) {
+    if m.iter().any(|x| !x.is_finite()) || norm > 0.5 * 2f64.powi(MAX_SQUARINGS) {
         return [[f64::NAN; NA]; NA];
     }
-    let s = if norm > 0.5 {
-        (norm / 0.5).log2().ceil() as i32
-    } else {
-        0
-    };
-    let scale = 0.5f64.powi(s);
-    let mut a = *m;
-    for row in a.iter_mut() {
-        for x in row.iter_mut() {
-            *x *= scale;
-        }
-    }
-    let mut result = [[0.0; NA]; NA];
-    let mut term = [[0.0; NA]; NA];
-    for i in 0..NA {
-        result[i][i] = 1.0;
-        term[i][i] = 1.0;
-    }
-    for k in 1..=16 {
-        term = mat_mul(&term, &a);
-        for row in term.iter_mut() {
-            for x in row.iter_mut() {
-                *x /= k as f64;
-            }
-        }
-        for i in 0..NA {
-            for j in 0..NA {
-                result[i][j] += term[i][j];
-            }
-        }
-    }
-    for _ in 0..s {
-        result = mat_mul(&result, &result);
-    }
-    result
+    let e = m.exp();
+    std::array::from_fn(|i| std::array::from_fn(|j| e[(i, j)]))
 }
 
 /// Continuous plant: ẋ = A x + B u, u = (τ_ref, F_ext), as the augmented matrix [[A, B], [0, 0]].
@@ -118,11 +105,12 @@ pub fn plant_matrix(p: &ServoParams) -> Mat {
     a
 }
 
-/// Φ and Γ of one step h, stored as the top rows of e^{[[A, B], [0, 0]] h}.
+/// Φ and Γ of one step h: the top rows of e^{[[A, B], [0, 0]] h}.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Step {
     h: f64,
-    rows: [[f64; NA]; N],
+    phi: SMatrix<f64, N, N>,
+    gamma: SMatrix<f64, N, 2>,
 }
 
 impl Step {
@@ -134,21 +122,16 @@ impl Step {
             }
         }
         let e = expm(&m);
-        let mut rows = [[0.0; NA]; N];
-        rows.copy_from_slice(&e[..N]);
-        Step { h, rows }
+        Step {
+            h,
+            phi: SMatrix::from_fn(|i, j| e[i][j]),
+            gamma: SMatrix::from_fn(|i, j| e[i][N + j]),
+        }
     }
 
-    fn apply(&self, x: &[f64; N], u: [f64; 2]) -> [f64; N] {
-        let mut out = [0.0; N];
-        for (o, row) in out.iter_mut().zip(&self.rows) {
-            let mut acc = row[5] * u[0] + row[6] * u[1];
-            for j in 0..N {
-                acc += row[j] * x[j];
-            }
-            *o = acc;
-        }
-        out
+    /// x(t + h) = Φ x(t) + Γ u, u = (τ_ref, F_ext) held.
+    fn apply(&self, x: &PlantState, u: [f64; 2]) -> PlantState {
+        PlantState::from_vector(&(self.phi * x.vector() + self.gamma * Vector2::from(u)))
     }
 }
 
@@ -164,7 +147,7 @@ pub struct AxisCommand {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ServoAxis {
     params: ServoParams,
-    x: [f64; N],
+    x: PlantState,
     /// Velocity-loop integrator (N·m).
     integral: f64,
     /// Torque command held over the current servo period (N·m).
@@ -187,7 +170,11 @@ impl ServoAxis {
         let r = params.screw_lead / (2.0 * std::f64::consts::PI);
         ServoAxis {
             params,
-            x: [position / r, 0.0, position, 0.0, 0.0],
+            x: PlantState {
+                theta: position / r,
+                x: position,
+                ..PlantState::default()
+            },
             integral: 0.0,
             torque_ref: 0.0,
             friction: 0.0,
@@ -206,15 +193,16 @@ impl ServoAxis {
     fn screw_force(&self) -> f64 {
         let r = self.lead_radius();
         let p = &self.params;
-        p.axial_stiffness * (r * self.x[0] - self.x[2]) + p.axial_damping * (r * self.x[1] - self.x[3])
+        let s = &self.x;
+        p.axial_stiffness * (r * s.theta - s.x) + p.axial_damping * (r * s.omega - s.v)
     }
 
     pub fn state(&self) -> AxisState {
         AxisState {
-            position: self.x[2],
-            velocity: self.x[3],
+            position: self.x.x,
+            velocity: self.x.v,
             following_error: self.command_position - self.feedback(),
-            motor_torque: self.x[4],
+            motor_torque: self.x.tau,
             // The nut pushes the table; the screw bearings push the frame the other way.
             drive_force: -self.screw_force(),
         }
@@ -223,13 +211,13 @@ impl ServoAxis {
     /// Position the control loop sees: motor encoder (quantised) × lead, or the linear scale.
     fn feedback(&self) -> f64 {
         if self.params.linear_scale != 0.0 {
-            return self.x[2];
+            return self.x.x;
         }
         let theta = if self.params.encoder_counts > 0.0 {
             let q = 2.0 * std::f64::consts::PI / self.params.encoder_counts;
-            (self.x[0] / q).round() * q
+            (self.x.theta / q).round() * q
         } else {
-            self.x[0]
+            self.x.theta
         };
         self.lead_radius() * theta
     }
@@ -240,7 +228,7 @@ impl ServoAxis {
         let r = self.lead_radius();
         let e = cmd.position - self.feedback();
         let omega_ref = (p.kv * e + p.velocity_feedforward * cmd.velocity) / r;
-        let e_omega = omega_ref - self.x[1];
+        let e_omega = omega_ref - self.x.omega;
         let j_total = p.rotor_inertia + p.screw_inertia + p.table_mass * r * r;
         let ff = p.acceleration_feedforward * j_total * cmd.acceleration / r;
         let ki = p.velocity_gain / p.velocity_integral_time;
@@ -252,7 +240,7 @@ impl ServoAxis {
             self.integral = integral;
         }
         self.torque_ref = torque;
-        self.friction = p.coulomb_friction * (self.x[3] / p.friction_velocity).tanh();
+        self.friction = p.coulomb_friction * (self.x.v / p.friction_velocity).tanh();
     }
 
     /// Advance by dt (s) with the command held and an external force on the table (N).

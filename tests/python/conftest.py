@@ -1,14 +1,24 @@
-import os
-import pathlib
+"""Fixtures of the Python suite: the CLI, both FMUs (built through `make fmu` when missing; never
+skipped), unpacked once per session, and the feed laws read from CncMotion's modelDescription.
+
+A test asking for `profile` runs once per item of the FMU's `machine.profile` Enumeration;
+`jerk_limited_profile` the same without `trapezoid` (the one law without a jerk limit)."""
 import subprocess
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-# CI puts ../shared beside the clone; a git worktree may sit one level deeper.
-SHARED = next((p / "shared" for p in (ROOT.parent, ROOT.parent.parent) if (p / "shared" / "corpus").is_dir()),
-              ROOT.parent / "shared")
-CLI = ROOT / os.environ.get("CARGO_TARGET_DIR", "target") / "release" / "cnc-motion"
+from cnc_motion_sim import Unpacked, profiles as fmu_profiles
+from cnc_motion_sim.paths import CLI, CNC_FMU, ROOT, SHARED, SSP, STRUCTURE_FMU
+
+
+@pytest.fixture(scope="session")
+def root():
+    return ROOT
+
+
+@pytest.fixture(scope="session")
+def shared():
+    return SHARED
 
 
 @pytest.fixture(scope="session")
@@ -18,46 +28,54 @@ def cli():
     return str(CLI)
 
 
-# --- FMU fixtures (the FMUs are built through the Makefile if missing; never skipped) ------------
-import sys  # noqa: E402
-
-sys.path.insert(0, str(ROOT / "examples"))
-import fmusim  # noqa: E402
-
-CORPUS_PROGRAMS = sorted((SHARED / "corpus").glob("*.ngc"))
-
-
 def _make_fmu():
-    missing = [p for p in (fmusim.CNC_FMU, fmusim.STRUCTURE_FMU, fmusim.SSP) if not p.exists()]
+    missing = [p for p in (CNC_FMU, STRUCTURE_FMU, SSP) if not p.exists()]
     if missing:
         subprocess.run(["make", "fmu"], cwd=ROOT, check=True)
-    for p in (fmusim.CNC_FMU, fmusim.STRUCTURE_FMU, fmusim.SSP):
+    for p in (CNC_FMU, STRUCTURE_FMU, SSP):
         assert p.exists(), f"`make fmu` did not write {p}"
 
 
 @pytest.fixture(scope="session")
 def fmus():
     _make_fmu()
-    return fmusim.CNC_FMU, fmusim.STRUCTURE_FMU
+    return CNC_FMU, STRUCTURE_FMU
 
 
 @pytest.fixture(scope="session")
 def cnc(fmus):
-    u = fmusim.Unpacked(fmus[0])
+    u = Unpacked(fmus[0])
     yield u
     u.cleanup()
 
 
 @pytest.fixture(scope="session")
 def structure(fmus):
-    u = fmusim.Unpacked(fmus[1])
+    u = Unpacked(fmus[1])
     yield u
     u.cleanup()
 
 
 @pytest.fixture(scope="session")
 def ssp(fmus):
-    return fmusim.SSP
+    return SSP
+
+
+@pytest.fixture(scope="session")
+def profiles(fmus):
+    """The feed laws, in the order of the `machine.profile` Enumeration."""
+    return fmu_profiles(fmus[0])
+
+
+def pytest_generate_tests(metafunc):
+    wanted = [n for n in ("profile", "jerk_limited_profile") if n in metafunc.fixturenames]
+    if not wanted:
+        return
+    _make_fmu()
+    kinds = fmu_profiles(CNC_FMU)
+    assert "trapezoid" in kinds, kinds
+    for name in wanted:
+        metafunc.parametrize(name, [k for k in kinds if name == "profile" or k != "trapezoid"])
 
 
 # --- Known FMU defects found by this suite --------------------------------------------------------

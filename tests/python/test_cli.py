@@ -2,7 +2,7 @@
 import json
 import subprocess
 
-from conftest import ROOT, SHARED
+from cnc_motion_sim.paths import ROOT, SHARED
 
 
 def run(cli, *args):

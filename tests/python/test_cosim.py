@@ -5,9 +5,9 @@ import json
 import numpy as np
 import pytest
 
-import cosim
-import fmusim
-from conftest import ROOT
+from cnc_motion_sim import cosim
+import cnc_motion_sim as sim
+from cnc_motion_sim.paths import CNC_FMU, ROOT, STRUCTURE_FMU
 
 T = 1.5  # s of the default program: plunge, first edges and corners
 
@@ -60,7 +60,7 @@ STABLE = {f"{a}.couplingMass": 1.0 for a in "xyz"}  # a two-way loop that is sta
 
 @pytest.fixture(scope="module")
 def stable_ssp(fmus, tmp_path_factory):
-    from make_ssp import make_ssp
+    from cnc_motion_sim.ssp import make_ssp
     return make_ssp(out=tmp_path_factory.mktemp("ssp") / "stable.ssp", structure_params=STABLE)
 
 
@@ -83,7 +83,7 @@ def test_masters_agree_on_a_stable_two_way_loop(cnc, structure, stable_ssp, grid
 def test_libcosim_sets_the_profile_through_the_integer_index(cnc, structure, tmp_path):
     """libcosim ignores Enumerations: the Integer machine.profileIndex bound in the SSP selects the
     trapezoid there, equal to the own master setting the Enumeration, and unlike the default."""
-    from make_ssp import make_ssp
+    from cnc_motion_sim.ssp import make_ssp
     ssp_ = make_ssp(out=tmp_path / "trapezoid.ssp", cnc_params={"machine.profileIndex": 5})
     own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"machine.profile": "trapezoid"}, stop_time=T, grid="ns")
     lib = cosim.cosim_libcosim(ssp_, stop_time=T)
@@ -106,7 +106,7 @@ def _feedthrough_outputs():
     """Outputs that declare a direct dependency on an input (ModelStructure), as "comp.name"."""
     from fmpy import read_model_description
     out = []
-    for comp, fmu in (("cnc", fmusim.CNC_FMU), ("structure", fmusim.STRUCTURE_FMU)):
+    for comp, fmu in (("cnc", CNC_FMU), ("structure", STRUCTURE_FMU)):
         md = read_model_description(str(fmu))
         out += [f"{comp}.{o.variable.name}" for o in md.outputs if o.dependencies]
     return out
@@ -129,7 +129,7 @@ def test_ecos_equals_own_master(own, ssp, structure):
     assert feedthrough == [f"structure.{a}.acceleration" for a in "xyz"], feedthrough
     _compare(own, _without_feedthrough(ecos), "Ecos")
     from fmpy import read_model_description
-    start = {v.name: float(v.start) for v in read_model_description(str(fmusim.STRUCTURE_FMU)).modelVariables
+    start = {v.name: float(v.start) for v in read_model_description(str(STRUCTURE_FMU)).modelVariables
              if v.start is not None and v.type == "Real"}
     n = len(own["time"])
     moving = 0
@@ -144,12 +144,11 @@ def test_ecos_equals_own_master(own, ssp, structure):
     assert moving >= 2, "the frame accelerates along at least two axes in the first 1.5 s"
 
 
-def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp):
+def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp, shared):
     """Ecos on a real CAM program (Pessoles' linear path, its first 3 s: the rapid and five cutting moves) with the trapezoid law chosen
     through the Integer twin machine.profileIndex, two-way with 1 kg on the frame: every output
     without direct feed-through bit for bit as the own master setting the Enumeration."""
-    from conftest import SHARED
-    program = (SHARED / "corpus" / "pessoles_linear.ngc").read_text()
+    program = (shared / "corpus" / "pessoles_linear.ngc").read_text()
     stop = 3.0
     own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"program": program, "machine.profile": "trapezoid"},
                               structure_params=STABLE, stop_time=stop)
@@ -203,13 +202,13 @@ RESIDUAL = {}
 
 
 @pytest.mark.parametrize("program", ["default", "stops"])
-def test_residual_vibration_lower_than_trapezoid(cnc, structure, program):
+def test_residual_vibration_lower_than_trapezoid(cnc, structure, profiles, program):
     """Residual vibration of the frame after each standstill of the command (RMS of |deflection| in
     0.2 s windows), driven by the axes one-way: the measure of the command profile, independent of
     the stability of the loadForce loop tested above. `stops`: exact stops and dwells."""
     rms = {}
     stops = {}
-    for kind in ["trapezoid", "scurve7", "quintic", "jerk15", "mixed57"]:
+    for kind in profiles:
         params = {"machine.profile": kind}
         if program == "stops":
             params["program"] = STOPS

@@ -5,7 +5,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import pytest
 
-import fmusim
+import cnc_motion_sim as sim
 
 H = 1e-3
 
@@ -47,7 +47,7 @@ def test_fmu_state_round_trip(fmu):
     u = fmu
     assert u.md.coSimulation.canGetAndSetFMUstate and u.md.coSimulation.canSerializeFMUstate
     inputs = drive_inputs(u)
-    s = fmusim.Slave(u, "a")
+    s = sim.Slave(u, "a")
     s.initialize()
     advance(s, u, 700, inputs)
     state = s.fmu.getFMUstate()
@@ -63,7 +63,7 @@ def test_fmu_state_round_trip(fmu):
     s.free()
     assert np.array_equal(first, again)
     # Serialized bytes into a fresh instance.
-    s2 = fmusim.Slave(u, "b")
+    s2 = sim.Slave(u, "b")
     s2.initialize()
     st2 = s2.fmu.deSerializeFMUstate(blob)
     s2.fmu.setFMUstate(st2)
@@ -77,7 +77,7 @@ def test_fmu_state_round_trip(fmu):
 def test_reset_cycles_identical(fmu):
     u = fmu
     inputs = drive_inputs(u)
-    s = fmusim.Slave(u, "r")
+    s = sim.Slave(u, "r")
     runs = []
     for cycle in range(4):
         if cycle:
@@ -90,8 +90,8 @@ def test_reset_cycles_identical(fmu):
 
 
 def _run_default(cnc, kind):
-    r = fmusim.run_cnc(cnc, {"machine.profile": kind})
-    return np.column_stack([r[n] for n in fmusim.cnc_outputs(cnc)])
+    r = sim.run_cnc(cnc, {"machine.profile": kind})
+    return np.column_stack([r[n] for n in sim.cnc_outputs(cnc)])
 
 
 def test_parallel_instances_in_threads(cnc):

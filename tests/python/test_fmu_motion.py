@@ -1,24 +1,25 @@
 """CncMotion.fmu in fmpy: programs run to the end, command within the machine's limits for every
-profile kind, smooth (continuous acceleration, bounded jerk), feed hold and override, bad programs."""
+profile kind (the items of the FMU's `machine.profile`), smooth (continuous acceleration, bounded
+jerk), feed hold and override, bad programs."""
 import re
 import subprocess
 
 import numpy as np
 import pytest
 
-import fmusim
-from conftest import CORPUS_PROGRAMS, ROOT
+import cnc_motion_sim as sim
+from cnc_motion_sim.paths import ROOT, corpus_programs
 
 REL = 1e-9
 # Issue 14: seed 003's pocket with cutter compensation (G41.1 D5, G54, T/D/M6) through `program`.
-PROGRAMS = [fmusim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS + [ROOT / "examples" / "seed003_pocket_g41.ngc"]
-KINDS = fmusim.PROFILES
+CORPUS_PROGRAMS = corpus_programs()
+PROGRAMS = [sim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS + [ROOT / "examples" / "seed003_pocket_g41.ngc"]
 
 
 def limits(cnc):
     """Axis limits (SI) from the start values of the parameters."""
     out = {}
-    for a in fmusim.AXES:
+    for a in sim.AXES:
         out[a] = {q: float(cnc.vars[f"{a}.max{Q}"].start) for q, Q in
                   [("velocity", "Velocity"), ("acceleration", "Acceleration"), ("jerk", "Jerk")]}
     return out
@@ -35,8 +36,8 @@ def run(cnc, program, kind):
     key = (str(program), kind)
     if key not in _cache:
         params = {"program": program.read_text(), "machine.profile": kind}
-        _cache[key] = fmusim.run_cnc(cnc, params, names=[
-            *(f"{a}.command.{q}" for a in fmusim.AXES for q in ("position", "velocity", "acceleration", "jerk")),
+        _cache[key] = sim.run_cnc(cnc, params, names=[
+            *(f"{a}.command.{q}" for a in sim.AXES for q in ("position", "velocity", "acceleration", "jerk")),
             "path.feed", "path.distance", "status.line", "status.finished"])
     return _cache[key]
 
@@ -55,35 +56,33 @@ def last_point(program):
 def test_program_runs_to_finished(cnc, program):
     res = run(cnc, program, "scurve7")
     assert res["status.finished"][-1] == 1.0
-    end = [res[f"{a}.command.position"][-1] * 1e3 for a in fmusim.AXES]
+    end = [res[f"{a}.command.position"][-1] * 1e3 for a in sim.AXES]
     np.testing.assert_allclose(end, last_point(program), atol=1e-9)
     # At the end the command is at rest.
-    for a in fmusim.AXES:
+    for a in sim.AXES:
         assert res[f"{a}.command.velocity"][-1] == 0.0
 
 
-@pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
-def test_command_within_axis_limits(cnc, program, kind):
-    res = run(cnc, program, kind)
+def test_command_within_axis_limits(cnc, program, profile):
+    res = run(cnc, program, profile)
     lim = limits(cnc)
-    for a in fmusim.AXES:
+    for a in sim.AXES:
         for q in ("velocity", "acceleration", "jerk"):
-            if q == "jerk" and kind == "trapezoid":
+            if q == "jerk" and profile == "trapezoid":
                 continue  # the trapezoid has no jerk limit
             peak = np.max(np.abs(res[f"{a}.command.{q}"]))
             assert peak <= lim[a][q] * (1 + REL), f"{a} {q}: {peak} > {lim[a][q]}"
 
 
-@pytest.mark.parametrize("kind", [k for k in KINDS if k != "trapezoid"])
 @pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
-def test_acceleration_continuous_jerk_bounded(cnc, program, kind):
+def test_acceleration_continuous_jerk_bounded(cnc, program, jerk_limited_profile):
     """Between two ticks a changes by at most ∫|j| ≤ J·T: no acceleration steps anywhere."""
-    res = run(cnc, program, kind)
+    res = run(cnc, program, jerk_limited_profile)
     lim = limits(cnc)
     period = float(cnc.vars["machine.interpolationPeriod"].start)
     assert abs(np.diff(res["time"])[0] - period) < 1e-12
-    for a in fmusim.AXES:
+    for a in sim.AXES:
         acc = res[f"{a}.command.acceleration"]
         step = np.max(np.abs(np.diff(acc)))
         bound = lim[a]["jerk"] * period * (1 + 1e-9) + 1e-9 * lim[a]["acceleration"]
@@ -94,7 +93,7 @@ def test_acceleration_continuous_jerk_bounded(cnc, program, kind):
 
 def test_trapezoid_has_acceleration_steps(cnc):
     """The baseline really is a trapezoid: acceleration jumps (what the smoothness test guards against)."""
-    res = run(cnc, fmusim.DEFAULT_PROGRAM, "trapezoid")
+    res = run(cnc, sim.DEFAULT_PROGRAM, "trapezoid")
     lim = limits(cnc)
     period = float(cnc.vars["machine.interpolationPeriod"].start)
     jumps = max(np.max(np.abs(np.diff(res[f"{a}.command.acceleration"]))) for a in "xy")
@@ -108,7 +107,7 @@ def _line_run(cnc, inputs=None, override=None):
     params = {"program": LINE}
     if override is not None:
         params["feedOverride"] = override
-    return fmusim.run_cnc(cnc, params, inputs=inputs, names=[
+    return sim.run_cnc(cnc, params, inputs=inputs, names=[
         "x.command.position", "x.command.velocity", "x.command.acceleration", "x.command.jerk",
         "path.feed", "status.finished"])
 
@@ -184,7 +183,7 @@ def test_bad_program_error_at_initialization(cnc, cli, tmp_path, case):
     where, what = f"{m.group(1)}:{m.group(2)}", m.group(3)
     if case == "g33":
         assert where == "3:1"
-    s = fmusim.Slave(cnc, "bad")
+    s = sim.Slave(cnc, "bad")
     try:
         s.fmu.setupExperiment(startTime=0.0)
         s.set("program", text)
@@ -203,7 +202,7 @@ def test_simulate_fmu_defaults_equal_cli_run(fmus, cli, tmp_path):
     status.finished, and every tick's command equals the CLI's `run` of the same program and
     machine to 1e-12 m."""
     from fmpy import simulate_fmu
-    names = [f"{a}.command.position" for a in fmusim.AXES] + ["status.finished"]
+    names = [f"{a}.command.position" for a in sim.AXES] + ["status.finished"]
     res = simulate_fmu(str(fmus[0]), output_interval=1e-3, output=names)
     assert res["status.finished"][-1], "default stop time covers the default program"
     csv = tmp_path / "ticks.csv"
@@ -215,7 +214,7 @@ def test_simulate_fmu_defaults_equal_cli_run(fmus, cli, tmp_path):
     # Row k of the FMU result is at t = k·1 ms; CSV row k−1 is the tick at k·1 ms.
     t = res["time"][1:n + 1]
     assert np.allclose(t, ticks["time_s"], rtol=0, atol=1e-9)
-    for a in fmusim.AXES:
+    for a in sim.AXES:
         fmu = res[f"{a}.command.position"][1:n + 1]
         np.testing.assert_allclose(fmu, ticks[f"{a}_mm"] * 1e-3, rtol=0, atol=1e-12, err_msg=a)
     i_done = int(np.argmax(res["status.finished"]))

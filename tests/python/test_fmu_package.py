@@ -6,7 +6,7 @@ import zipfile
 
 import pytest
 
-from conftest import ROOT
+from cnc_motion_sim.paths import ROOT
 
 BIN = ROOT / "target" / "release"
 PACKAGERS = {

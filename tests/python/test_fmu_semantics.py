@@ -8,7 +8,7 @@ import pytest
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import fmi2Discard, fmi2Error, fmi2OK
 
-import fmusim
+import cnc_motion_sim as sim
 
 H = 1e-3
 DO_STEP_STATUS, LAST_SUCCESSFUL_TIME, TERMINATED = 0, 2, 3
@@ -29,7 +29,7 @@ def status_of(call, *args):
 
 
 def started(u, name, steps=20, stop_time=None):
-    s = fmusim.Slave(u, name)
+    s = sim.Slave(u, name)
     s.fmu.setupExperiment(startTime=0.0, stopTime=stop_time)
     s.fmu.enterInitializationMode()
     s.fmu.exitInitializationMode()
@@ -214,12 +214,12 @@ def test_declared_ranges_are_enforced(fmu):
         for bound, step in ((v.min, -1), (v.max, +1)):
             if bound is None:
                 continue
-            s = fmusim.Slave(fmu, "range")
+            s = sim.Slave(fmu, "range")
             value = float(bound) + step
             assert status_of(s.set, v.name, value) == fmi2Error, (v.name, value)
             assert "out of range" in s.log[-1][2], s.log[-1]
             s.fmu.freeInstance()
-    s = fmusim.Slave(fmu, "nan")
+    s = sim.Slave(fmu, "nan")
     assert status_of(s.set, an_input(fmu).name, math.nan) == fmi2Error
     assert "is not finite" in s.log[-1][2]
     s.fmu.freeInstance()
@@ -235,7 +235,7 @@ def test_instantiate_free_cycles_do_not_leak(fmu):
     """1000 cycles of instantiate, initialize, 5 steps, an FMU state left unfreed, an fmi2Error,
     fmi2FreeInstance on one loaded library: no crash, and the process does not grow
     (FreeInstance frees the states it handed out)."""
-    s = fmusim.Slave(fmu, "cycles")
+    s = sim.Slave(fmu, "cycles")
     f = s.fmu
 
     def cycle():

@@ -5,7 +5,7 @@ import sys
 import pytest
 from fmpy.validation import validate_fmu
 
-from conftest import ROOT
+from cnc_motion_sim.paths import ROOT
 
 FMUS = ["CncMotion", "MachineStructure"]
 

@@ -1,7 +1,5 @@
 """The Dask sweep on a 2-worker LocalCluster gives the serial results, case for case."""
-import fmusim
-import sweep
-from conftest import CORPUS_PROGRAMS  # noqa: F401
+from cnc_motion_sim import sweep
 
 
 def test_sweep_local_cluster_equals_serial(fmus, tmp_path):
@@ -14,3 +12,16 @@ def test_sweep_local_cluster_equals_serial(fmus, tmp_path):
     # The sweep sees the jerk limit: a lower limit takes longer.
     t = {(r["profile"], r["jerk_mm_s3"]): r["cycle_time_s"] for r in serial}
     assert t[("scurve7", 20000.0)] > t[("scurve7", 80000.0)]
+
+
+def test_package_zip_for_remote_workers_imports(tmp_path):
+    """What `run_dask(scheduler=...)` uploads: the package as a zip that a worker can import from."""
+    import os
+    import subprocess
+    import sys
+
+    z = sweep._package_zip(tmp_path)
+    env = dict(os.environ, PYTHONPATH=str(z))
+    out = subprocess.run([sys.executable, "-c", "import cnc_motion_sim.sweep as s; print(s.__file__)"],
+                         cwd=tmp_path, env=env, capture_output=True, text=True, check=True).stdout
+    assert out.strip() == str(z / "cnc_motion_sim" / "sweep.py")

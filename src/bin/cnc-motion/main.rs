@@ -4,6 +4,7 @@
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
 
+use clap::builder::TypedValueParser;
 use clap::{Parser, Subcommand};
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use std::process::ExitCode;
@@ -48,9 +49,9 @@ enum Command {
         /// Snap limit (mm/s⁴), jerk15 only.
         #[arg(long, default_value_t = 6.0e6)]
         snap: f64,
-        /// Feed law: scurve7, quintic, jerk15, mixed57, trapezoid.
-        #[arg(long, default_value = "scurve7")]
-        kind: String,
+        /// Feed law (the names of the machine file's `profile`).
+        #[arg(long, default_value = "scurve7", value_parser = kind_parser())]
+        kind: ProfileKind,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -77,10 +78,16 @@ fn main() -> ExitCode {
             snap,
             kind,
             json,
-        } => profile(length, v_start, v_end, v_max, a_max, j_max, snap, &kind, json),
+        } => profile(length, v_start, v_end, v_max, a_max, j_max, snap, kind, json),
         Command::Run(args) => run::run(&args),
         Command::Package { output } => package(&output),
     }
+}
+
+/// `--kind` takes the library's names (clap lists them in `--help` and in its error).
+fn kind_parser() -> impl TypedValueParser<Value = ProfileKind> {
+    clap::builder::PossibleValuesParser::new(ProfileKind::ALL.map(ProfileKind::name))
+        .try_map(|name| name.parse::<ProfileKind>())
 }
 
 fn fail(message: impl std::fmt::Display) -> ExitCode {
@@ -97,14 +104,9 @@ fn profile(
     a_max: f64,
     j_max: f64,
     snap: f64,
-    kind: &str,
+    kind: ProfileKind,
     json: bool,
 ) -> ExitCode {
-    let Some(kind) = ProfileKind::from_name(kind) else {
-        return fail(format!(
-            "--kind: unknown feed law '{kind}' (scurve7, quintic, jerk15, mixed57, trapezoid)"
-        ));
-    };
     let checks = [
         ("--length", length, true),
         ("--v-start", v_start, true),

@@ -4,10 +4,12 @@ use clap::Args;
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
 use cnc_motion::gcode::ProgramSource;
-use cnc_motion::interp::Differences;
+use cnc_motion::interp::{Differences, Tick};
 use cnc_motion::path::Segment;
+use cnc_motion::servo::AxisState;
 use indicatif::{ProgressBar, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use serde::Serialize;
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -32,6 +34,60 @@ pub struct RunArgs {
     /// Stop after this many seconds of simulated time even if the program is not done.
     #[arg(long, default_value_t = 86_400.0)]
     max_time: f64,
+}
+
+/// One line of `--csv` (mm, s); the field names are the header. Numbers are written in their
+/// shortest round-trip form (`0.0`, `1e-7`).
+#[derive(Serialize)]
+struct CsvRow {
+    time_s: f64,
+    line: u32,
+    x_mm: f64,
+    y_mm: f64,
+    z_mm: f64,
+    feed_mm_s: f64,
+    vx_mm_s: f64,
+    vy_mm_s: f64,
+    vz_mm_s: f64,
+    ax_mm_s2: f64,
+    ay_mm_s2: f64,
+    az_mm_s2: f64,
+    jx_mm_s3: f64,
+    jy_mm_s3: f64,
+    jz_mm_s3: f64,
+    x_act_mm: f64,
+    y_act_mm: f64,
+    z_act_mm: f64,
+}
+
+impl CsvRow {
+    fn new(tick: &Tick, axes: &[AxisState; 3]) -> CsvRow {
+        let [x_mm, y_mm, z_mm] = tick.p.map(|x| x / MM);
+        let [vx_mm_s, vy_mm_s, vz_mm_s] = tick.v.map(|x| x / MM);
+        let [ax_mm_s2, ay_mm_s2, az_mm_s2] = tick.a.map(|x| x / MM);
+        let [jx_mm_s3, jy_mm_s3, jz_mm_s3] = tick.j.map(|x| x / MM);
+        let [x_act_mm, y_act_mm, z_act_mm] = axes.map(|s| s.position / MM);
+        CsvRow {
+            time_s: tick.t,
+            line: tick.line,
+            x_mm,
+            y_mm,
+            z_mm,
+            feed_mm_s: tick.feed / MM,
+            vx_mm_s,
+            vy_mm_s,
+            vz_mm_s,
+            ax_mm_s2,
+            ay_mm_s2,
+            az_mm_s2,
+            jx_mm_s3,
+            jy_mm_s3,
+            jz_mm_s3,
+            x_act_mm,
+            y_act_mm,
+            z_act_mm,
+        }
+    }
 }
 
 /// Running maxima of |x| per axis.
@@ -76,14 +132,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
 
     let mut csv = match &args.csv {
         Some(path) => {
-            let f = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
-            let mut w = std::io::BufWriter::new(f);
-            writeln!(
-                w,
-                "time_s,line,x_mm,y_mm,z_mm,feed_mm_s,vx_mm_s,vy_mm_s,vz_mm_s,ax_mm_s2,ay_mm_s2,az_mm_s2,\
-                 jx_mm_s3,jy_mm_s3,jz_mm_s3,x_act_mm,y_act_mm,z_act_mm"
-            )
-            .map_err(|e| format!("{path}: {e}"))?;
+            let w = csv::Writer::from_path(path).map_err(|e| format!("{path}: {e}"))?;
             Some((path.clone(), w))
         }
         None => None,
@@ -126,36 +175,8 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         torque.take(axes.map(|s| s.motor_torque));
         max_contour = max_contour.max(engine.contour_error());
         if let Some((path, w)) = csv.as_mut() {
-            let p = tick.p.map(|x| x / MM);
-            let (tv, ta, tj) = (
-                tick.v.map(|x| x / MM),
-                tick.a.map(|x| x / MM),
-                tick.j.map(|x| x / MM),
-            );
-            let act = axes.map(|s| s.position / MM);
-            writeln!(
-                w,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                tick.t,
-                tick.line,
-                p[0],
-                p[1],
-                p[2],
-                tick.feed / MM,
-                tv[0],
-                tv[1],
-                tv[2],
-                ta[0],
-                ta[1],
-                ta[2],
-                tj[0],
-                tj[1],
-                tj[2],
-                act[0],
-                act[1],
-                act[2]
-            )
-            .map_err(|e| format!("{path}: {e}"))?;
+            let row = CsvRow::new(&tick, &axes);
+            w.serialize(row).map_err(|e| format!("{path}: {e}"))?;
         }
         n += 1;
         if let Some(bar) = &bar {

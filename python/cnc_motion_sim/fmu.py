@@ -1,13 +1,17 @@
-"""Small helpers shared by the examples and the Python tests: FMU paths, a named-variable wrapper
-around fmpy's FMU2Slave, and a stand-alone run of CncMotion.fmu until `status.finished`.
+"""A named-variable wrapper around fmpy's FMU2Slave, and a stand-alone run of CncMotion.fmu until
+`status.finished`.
 
 Nothing here knows value references: every variable is looked up by name in modelDescription.xml,
 so the scripts follow the FMU when variables are added or renumbered.
 """
+from __future__ import annotations
+
 import ctypes
 import pathlib
 import shutil
 import tempfile
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 from fmpy import extract, read_model_description
@@ -19,15 +23,10 @@ from fmpy.fmi2 import (
     fmi2CallbackLoggerTYPE,
 )
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
-FMU_DIR = ROOT / "target" / "fmu"
-CNC_FMU = FMU_DIR / "CncMotion.fmu"
-STRUCTURE_FMU = FMU_DIR / "MachineStructure.fmu"
-SSP = ROOT / "examples" / "cosim.ssp"
-DEFAULT_PROGRAM = ROOT / "resources" / "default.ngc"
+from .paths import CNC_FMU
 
 AXES = "xyz"
-PROFILES = ["scurve7", "quintic", "jerk15", "mixed57", "trapezoid"]
+Values = Mapping[str, Any]
 
 _libc = ctypes.CDLL(None)
 _libc.calloc.restype = ctypes.c_void_p
@@ -38,32 +37,49 @@ _libc.free.argtypes = [ctypes.c_void_p]
 class Unpacked:
     """An FMU extracted once; many instances (threads too) share the directory."""
 
-    def __init__(self, fmu_path):
+    def __init__(self, fmu_path: str | pathlib.Path) -> None:
         self.path = pathlib.Path(fmu_path)
         self.md = read_model_description(str(self.path))
         self.dir = extract(str(self.path), unzipdir=tempfile.mkdtemp(prefix=self.path.stem + "_"))
         self.vars = {v.name: v for v in self.md.modelVariables}
 
-    def cleanup(self):
+    def cleanup(self) -> None:
         shutil.rmtree(self.dir, ignore_errors=True)
 
-    def names(self, causality):
+    def names(self, causality: str) -> list[str]:
         return [v.name for v in self.md.modelVariables if v.causality == causality]
 
-    def enum_value(self, name, item):
-        """The integer of an Enumeration item (`machine.profile` = "trapezoid" → its index)."""
+    def items(self, name: str) -> dict[str, int]:
+        """The items of an Enumeration variable, name → integer, in declared order."""
         v = self.vars[name]
         items = v.declaredType.items if v.declaredType is not None else []
-        for it in items:
-            if it.name == item:
-                return int(it.value)
-        raise KeyError(f"{name}: no item {item!r} in {[it.name for it in items]}")
+        return {it.name: int(it.value) for it in items}
+
+    def enum_value(self, name: str, item: str) -> int:
+        """The integer of an Enumeration item (`machine.profile` = "trapezoid" → its index)."""
+        items = self.items(name)
+        if item not in items:
+            raise KeyError(f"{name}: no item {item!r} in {list(items)}")
+        return items[item]
+
+
+def enumeration_items(fmu_path: str | pathlib.Path, name: str) -> list[str]:
+    """Item names of an Enumeration variable, read from the FMU's modelDescription.xml."""
+    md = read_model_description(str(fmu_path))
+    v = next(v for v in md.modelVariables if v.name == name)
+    return [it.name for it in (v.declaredType.items if v.declaredType is not None else [])]
+
+
+def profiles(fmu_path: str | pathlib.Path = CNC_FMU) -> list[str]:
+    """The feed laws CncMotion offers: the items of its `machine.profile` Enumeration."""
+    return enumeration_items(fmu_path, "machine.profile")
 
 
 class Slave:
     """One FMI 2.0 CS instance of an unpacked FMU, read and written by variable name."""
 
-    def __init__(self, unpacked, instance_name="instance", log=None):
+    def __init__(self, unpacked: Unpacked, instance_name: str = "instance",
+                 log: list[tuple[int, str, str]] | None = None) -> None:
         self.u = unpacked
         self.log = [] if log is None else log
         self.fmu = FMU2Slave(guid=unpacked.md.guid, unzipDirectory=unpacked.dir,
@@ -74,10 +90,10 @@ class Slave:
         self.time = 0.0
         self.steps = 0
 
-    def _make_callbacks(self):
+    def _make_callbacks(self) -> Any:
         log = self.log
 
-        def logger(env, instance, status, category, message):
+        def logger(env: Any, instance: Any, status: int, category: bytes, message: bytes) -> None:
             # Messages are printf formats; FMUs escape a literal '%' as '%%'. fmpy's C logger proxy is
             # not used: it keeps ONE global logger for all instances (a crash with instances in threads).
             text = message.decode(errors="replace").replace("%%", "%") if message else ""
@@ -90,7 +106,7 @@ class Slave:
         return cb
 
     # -- values by name ---------------------------------------------------------------------
-    def set(self, name, value):
+    def set(self, name: str, value: Any) -> None:
         v = self.u.vars[name]
         vr = [v.valueReference]
         if v.type == "Real":
@@ -106,11 +122,11 @@ class Slave:
         else:
             raise TypeError(f"{name}: type {v.type}")
 
-    def set_many(self, values):
+    def set_many(self, values: Values | None) -> None:
         for k, val in (values or {}).items():
             self.set(k, val)
 
-    def get(self, name):
+    def get(self, name: str) -> Any:
         v = self.u.vars[name]
         vr = [v.valueReference]
         if v.type == "Real":
@@ -121,9 +137,9 @@ class Slave:
             return bool(self.fmu.getBoolean(vr)[0])
         return self.fmu.getString(vr)[0]
 
-    def reader(self, names):
+    def reader(self, names: Sequence[str]) -> Callable[[], list[float]]:
         """A function returning the current values of `names` (grouped by type, one call each)."""
-        groups = {}
+        groups: dict[str, tuple[list[int], list[int]]] = {}
         for i, n in enumerate(names):
             v = self.u.vars[n]
             kind = "Integer" if v.type == "Enumeration" else v.type
@@ -133,7 +149,7 @@ class Slave:
         get = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger, "Boolean": self.fmu.getBoolean}
         out = [0.0] * len(names)
 
-        def read():
+        def read() -> list[float]:
             for kind, (idx, vrs) in groups.items():
                 for i, val in zip(idx, get[kind](vrs)):
                     out[i] = float(val)
@@ -142,7 +158,7 @@ class Slave:
         return read
 
     # -- life cycle -------------------------------------------------------------------------
-    def initialize(self, parameters=None, start_time=0.0):
+    def initialize(self, parameters: Values | None = None, start_time: float = 0.0) -> None:
         self.fmu.setupExperiment(startTime=start_time)
         self.set_many(parameters)
         self.fmu.enterInitializationMode()
@@ -155,7 +171,7 @@ class Slave:
     # "ns" = libcosim's integer nanoseconds, t_k = k·h_ns/1e9 and h = t_(k+1) − t_k (varies by ulps).
     grid = "exact"
 
-    def step(self, h):
+    def step(self, h: float) -> None:
         if self.grid == "ns":
             h_ns = int(round(h * 1e9))
             t0, t1 = (self.steps * h_ns) / 1e9, ((self.steps + 1) * h_ns) / 1e9
@@ -167,20 +183,22 @@ class Slave:
         self.steps += 1
         self.time = self.t0 + self.steps * h
 
-    def free(self):
+    def free(self) -> None:
         try:
             self.fmu.terminate()
         finally:
             self.fmu.freeInstance()
 
 
-def cnc_outputs(unpacked):
+def cnc_outputs(unpacked: Unpacked) -> list[str]:
     """The CncMotion outputs we record (all Real/Integer/Boolean outputs)."""
     return [v.name for v in unpacked.md.modelVariables
             if v.causality == "output" and v.type in ("Real", "Integer", "Boolean", "Enumeration")]
 
 
-def run_cnc(unpacked, parameters=None, h=1e-3, t_max=120.0, after=0.0, inputs=None, names=None):
+def run_cnc(unpacked: Unpacked, parameters: Values | None = None, h: float = 1e-3, t_max: float = 120.0,
+            after: float = 0.0, inputs: Callable[[float, Slave], None] | None = None,
+            names: Sequence[str] | None = None) -> dict[str, Any]:
     """Run CncMotion alone until status.finished (plus `after` seconds); returns {name: array}.
 
     `inputs(t, slave)` may set inputs before each step (feed hold, override)."""
@@ -207,7 +225,7 @@ def run_cnc(unpacked, parameters=None, h=1e-3, t_max=120.0, after=0.0, inputs=No
     finally:
         s.free()
     a = np.array(rows)
-    res = {"time": a[:, 0]}
+    res: dict[str, Any] = {"time": a[:, 0]}
     for i, n in enumerate(names):
         res[n] = a[:, i + 1]
     res["t_finished"] = t_end
