@@ -475,3 +475,39 @@ fn new_words_through_the_program_string_equal_the_engine() {
     assert_eq!(end, [0.0, 0.0, 0.0], "G28 ends at the home position");
     fmu.free(c);
 }
+
+/// O-word control flow (LinuxCNC "O Codes") through the FMU's `program` string, tick for tick
+/// equal to the library: a subroutine with arguments called from a while loop (the "Looping"
+/// sawtooth made of calls) and a repeat; the last move ends at the known corner.
+#[test]
+fn o_words_through_the_program_string_equal_the_engine() {
+    let text = "G21 G90 F3000\no<tooth> sub\nG1 X0\nG1 Y#1 X1\no<tooth> endsub\n#1 = 0\n\
+                o101 while [#1 LT 5]\no<tooth> call [#1 / 10]\n#1 = [#1 + 1]\no101 endwhile\n\
+                o102 repeat [2]\nG91 G1 Y0.5\no102 endrepeat\nG90\nM2\n";
+    let fmu = Fmu::load();
+    let c = fmu.instantiate("owords");
+    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
+    let finished_vr = fmu.vr("status.finished");
+    let machine = cnc_motion::config::Machine::default();
+    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
+        .unwrap()
+        .with_servo(true);
+    let (mut n, mut done) = (0, 0);
+    while done == 0 {
+        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
+        engine.advance(1e-3).unwrap();
+        n += 1;
+        assert_eq!(fmu.real(c, "y.command.position"), engine.tick().p[1]);
+        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
+        assert!(n < 200_000);
+    }
+    // Last tooth at Y 0.4, then two G91 steps of 0.5: (1, 1.4).
+    let end = ["x", "y"].map(|a| fmu.real(c, &format!("{a}.command.position")));
+    assert!(
+        (end[0] - 1e-3).abs() < 1e-12 && (end[1] - 1.4e-3).abs() < 1e-12,
+        "{end:?}"
+    );
+    fmu.free(c);
+}

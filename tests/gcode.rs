@@ -131,7 +131,7 @@ fn refusals_name_the_place() {
         ("G93 G1 X1 F1\n", "t.ngc:1:1: unsupported G93 (inverse-time feed)"),
         (
             "O100 sub\n",
-            "t.ngc:1:1: unsupported O-word (subroutines and control flow)",
+            "t.ngc:1:1: o100 sub without o100 endsub",
         ),
         (
             "G1 X#<a> F100\n",

@@ -182,6 +182,7 @@ pub struct MachineFile {
     pub tool: Option<std::collections::BTreeMap<String, nc::ToolFile>>,
     pub work_offset: Option<std::collections::BTreeMap<String, nc::PointFile>>,
     pub home: Option<std::collections::BTreeMap<String, nc::PointFile>>,
+    pub max_loop_iterations: Option<i64>,
 }
 
 /// One millimetre (m) and one mm/min (m/s): machine files and tests write their numbers in these.
@@ -270,6 +271,9 @@ impl Machine {
         }
         if let Some(h) = &f.home {
             m.nc.set_home(h)?;
+        }
+        if let Some(n) = f.max_loop_iterations {
+            m.nc.set_max_loop_iterations(n)?;
         }
         if let Some(servo) = &f.servo {
             for (i, s) in [&servo.x, &servo.y, &servo.z].into_iter().enumerate() {

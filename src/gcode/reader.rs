@@ -3,6 +3,7 @@
 mod comp;
 mod comp_geom;
 mod cycles;
+mod flow;
 mod modal;
 mod offsets;
 mod words;
@@ -100,6 +101,12 @@ pub struct Reader {
     sets: Sets,
     #[serde(skip)]
     line_buf: Vec<u8>,
+    /// O-word control flow: subroutines seen, open loops and conditionals, calls.
+    #[serde(default)]
+    flow: Box<flow::Flow>,
+    /// Where the line just executed sends the cursor (an O-word jump), instead of the next line.
+    #[serde(skip)]
+    jump: Option<flow::Place>,
 }
 
 /// What the G and M words of a line ask for.
@@ -148,6 +155,8 @@ impl Reader {
             params: Box::default(),
             sets: Vec::new(),
             line_buf: Vec::new(),
+            flow: Box::default(),
+            jump: None,
         }
     }
 
@@ -202,10 +211,16 @@ impl Reader {
             // Advance only past a line that was read without error, so a retry reports it again.
             let block = result.inspect_err(|_| self.lines.reset())?;
             if end == 0 {
+                self.check_flow_closed()?;
                 break;
             }
-            self.offset += end;
-            self.line += 1;
+            match self.jump.take() {
+                Some(p) => (self.offset, self.line) = (p.offset, p.line),
+                None => {
+                    self.offset += end;
+                    self.line += 1;
+                }
+            }
             if let Some(b) = block {
                 return Ok(Some(b));
             }
@@ -247,6 +262,19 @@ impl Reader {
             }
             deleted = raw.replacen('/', " ", 1);
             raw = &deleted;
+        }
+        if let Some(head) = super::oword::head(raw, Some(&self.params)) {
+            let head = head.map_err(|(c, m)| self.error(line, c as u32 + 1, m))?;
+            let here = flow::Place {
+                offset: self.offset,
+                line,
+            };
+            let next = flow::Place {
+                offset: self.offset + buf.len(),
+                line: line.saturating_add(1),
+            };
+            self.o_word(here, next, raw, head)?;
+            return Ok(None);
         }
         let mut words = std::mem::take(&mut self.words);
         let mut sets = std::mem::take(&mut self.sets);
