@@ -52,6 +52,10 @@ impl Reader {
         if self.plane != Plane::XY || !self.absolute {
             return Err(self.error(line, col, format!("{name}: drilling cycles run in G17 G90 only")));
         }
+        if self.inverse_time {
+            let msg = format!("{name}: drilling cycles are not defined in G93 (inverse time); use G94");
+            return Err(self.error(line, col, msg));
+        }
         if self.feed <= 0.0 {
             return Err(self.error(line, col, format!("{name} with no feed rate: F was never set")));
         }

@@ -13,7 +13,7 @@ impl Reader {
     pub(super) fn modal_words(&mut self, line: u32, words: &[Word]) -> Result<LineCodes, ProgramError> {
         let mut codes = LineCodes::default();
         // Modal groups seen on this line, to refuse two words of one group.
-        let mut groups: [Option<u32>; 12] = [None; 12];
+        let mut groups: [Option<u32>; 13] = [None; 13];
         let mut group = |g: usize, col: u32, this: &Reader| -> Result<(), ProgramError> {
             if groups[g].is_some() {
                 return Err(this.error(line, col, "two words of the same modal group on one line"));
@@ -78,10 +78,18 @@ impl Reader {
                     self.setup_code(code, col, &mut codes);
                 }
                 // Accepted, no effect on motion: cancel cycles, feed per minute, spindle modes,
-                // canned-cycle return levels.
+                // canned-cycle return levels (G93 / G94 above).
+                930 | 940 => {
+                    group(12, col, self)?;
+                    // A change of feed mode needs a new F (LinuxCNC "G93, G94, G95").
+                    if self.inverse_time != (code == 930) {
+                        self.feed = 0.0;
+                    }
+                    self.inverse_time = code == 930;
+                }
                 800 => self.motion = None,
                 980 | 990 => self.set_retract_to_r(code == 990),
-                940 | 960 | 970 => {}
+                960 | 970 => {}
                 _ => {
                     let what = unsupported_reason(code);
                     return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
@@ -164,7 +172,6 @@ fn unsupported_reason(code: i64) -> &'static str {
         50..=53 => " (splines)",
         380..=389 => " (probing)",
         840..=890 => " (canned cycles other than G73, G81, G82, G83)",
-        930 => " (inverse-time feed)",
         950 => " (feed per revolution)",
         70 | 80 => " (lathe diameter/radius mode: this controller drives a 3-axis mill)",
         _ => "",
