@@ -51,6 +51,9 @@ pub struct NcSetup {
     /// O-word loops: most jumps back (loop passes) in one run of a program.
     #[serde(default = "default_max_loop_iterations")]
     pub max_loop_iterations: u64,
+    /// An inch machine (`units = "inch"`): programs start in G20.
+    #[serde(default)]
+    pub inch: bool,
 }
 
 /// Default and largest `max_loop_iterations`.
@@ -84,6 +87,7 @@ impl Default for NcSetup {
             work_offsets: [[0.0; 3]; 9],
             home: [[0.0; 3]; 2],
             max_loop_iterations: DEFAULT_MAX_LOOP_ITERATIONS,
+            inch: false,
         }
     }
 }

@@ -176,6 +176,9 @@ impl Reader {
     pub fn with_machine(mut self, machine: &crate::config::Machine) -> Reader {
         self.arc_tolerance = machine.arc_radius_tolerance;
         self.corner = machine.nc.cutter_corner;
+        if machine.nc.inch {
+            self.unit = 25.4e-3;
+        }
         self.nc = Box::new(machine.nc.clone());
         self
     }
