@@ -82,7 +82,9 @@ fn case(edges: &[Edge], left: bool, radius: f64, g451: bool) -> Case {
         "G21 G90 G17 G64 F3000 G{corner}\nG0 X{} Y{}\n",
         start[0], start[1]
     );
-    writeln!(text, "G{side}.1 D{radius} G1 X{:.4} Y{:.4}", m[0], m[1]).unwrap();
+    // G41.1 / G42.1 D: the tool diameter.
+    let d = 2.0 * radius;
+    writeln!(text, "G{side}.1 D{d} G1 X{:.4} Y{:.4}", m[0], m[1]).unwrap();
     let mut contour = Vec::new();
     let mut at = m;
     let mut points: Vec<([f64; 3], f64)> = (0..n).map(|k| (v[k], edges[k].bulge)).collect();

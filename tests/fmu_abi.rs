@@ -406,7 +406,7 @@ fn extreme_parameters_are_refused_through_the_c_abi() {
 /// the radius (2 mm right of the first edge, y = −2 mm).
 #[test]
 fn compensated_program_through_the_program_string_equals_the_engine() {
-    let text = "G21 G90 G17 F3000\nG10 L2 P1 X1\n/G0 X50\nG0 X-1 Y0\nG42.1 D2 G1 X9 Y0\nX29\n\
+    let text = "G21 G90 G17 F3000\nG10 L2 P1 X1\n/G0 X50\nG0 X-1 Y0\nG42.1 D4 G1 X9 Y0\nX29\n\
                 G3 X39 Y10 R10\nG1 Y30\nX9\nG40 X-1 Y-1\nG92 X0 Y0\nG0 X1\nM2\n";
     let fmu = Fmu::load();
     let c = fmu.instantiate("comp");

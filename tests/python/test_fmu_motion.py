@@ -10,7 +10,7 @@ import fmusim
 from conftest import CORPUS_PROGRAMS, ROOT
 
 REL = 1e-9
-# Issue 14: seed 003's pocket with cutter compensation (G41.1 D5, G54, T/D/M6) through `program`.
+# Issue 14: seed 003's pocket with cutter compensation (G41.1 D10, G54, T/D/M6) through `program`.
 PROGRAMS = [fmusim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS + [ROOT / "examples" / "seed003_pocket_g41.ngc"]
 KINDS = fmusim.PROFILES
 

@@ -39,7 +39,8 @@ pub struct Comp {
 }
 
 impl Reader {
-    /// G40 / G41 / G42 (D: tool number, radius from the table) / G41.1 / G42.1 (D: the radius).
+    /// G40 / G41 / G42 (D: tool number, radius from the table) / G41.1 / G42.1 (D: the tool
+    /// diameter, LinuxCNC "G41.1, G42.1": "the ability to program the tool diameter").
     pub(super) fn set_comp(
         &mut self,
         line: u32,
@@ -54,12 +55,12 @@ impl Reader {
         let side = if code == 410 || code == 411 { 1.0 } else { -1.0 };
         let radius = if code == 411 || code == 421 {
             let Some((v, c)) = d else {
-                return Err(self.error(line, col, "G41.1/G42.1 needs D (the tool radius)"));
+                return Err(self.error(line, col, "G41.1/G42.1 needs D (the tool diameter)"));
             };
             if v < 0.0 {
-                return Err(self.error(line, c, "D (tool radius) must not be negative"));
+                return Err(self.error(line, c, "D (tool diameter) must not be negative"));
             }
-            check::length(b'D', v, self.unit).map_err(|m| self.error(line, c, m))?
+            0.5 * check::length(b'D', v, self.unit).map_err(|m| self.error(line, c, m))?
         } else {
             // D (LinuxCNC: the tool number; 840D: the loaded tool's edge), else the loaded tool.
             let n = self.tool.d.unwrap_or(self.tool.loaded);
