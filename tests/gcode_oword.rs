@@ -160,6 +160,16 @@ fn recursion_forward_definition_and_indirection() {
     assert_eq!(x, vec![7.0]);
 }
 
+/// Block delete on O-word lines: with the switch on a `/o…` line is skipped, with it off it runs.
+#[test]
+fn block_delete_on_o_word_lines() {
+    let text = "F100\no1 if [0]\nG1 X1\n/o1 else\nG1 X2\no1 endif\nG1 X3\n";
+    assert_eq!(xs(text), vec![3.0]);
+    let off = Machine::from_toml("block_delete = false\n", "m.toml").unwrap();
+    let x: Vec<f64> = moves_with(text, &off).unwrap().iter().map(|p| p[0]).collect();
+    assert_eq!(x, vec![2.0, 3.0]);
+}
+
 /// A file source is streamed and seeked (the loop re-reads its body from the file): same moves
 /// as the text.
 #[test]

@@ -488,9 +488,13 @@ impl Reader {
             };
             let text = String::from_utf8_lossy(&buf);
             let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-            let deleted = self.nc.block_delete && text.trim_start().starts_with('/');
+            // Block delete: the line is skipped (switch on) or read without its '/'.
+            let slash = text.trim_start().strip_prefix('/');
+            let deleted = self.nc.block_delete && slash.is_some();
+            let shift = slash.map_or(0, |rest| text.len() - rest.len());
+            let text = slash.unwrap_or(text);
             if let Some(h) = oword::head(text, None).filter(|_| !deleted) {
-                let h = h.map_err(|(c, m)| self.error(at.line, c as u32 + 1, m))?;
+                let h = h.map_err(|(c, m)| self.error(at.line, (shift + c) as u32 + 1, m))?;
                 if h.label == label && keys.contains(&h.keyword) {
                     let text = text.to_string();
                     return Ok(Some(Found {
