@@ -100,7 +100,12 @@ impl Params {
 
     /// Set a global named parameter at once (`_value` of a return).
     pub fn set_named(&mut self, name: &str, v: f64) {
-        self.named.insert(name.to_string(), v);
+        match self.named.get_mut(name) {
+            Some(x) => *x = v,
+            None => {
+                self.named.insert(name.to_string(), v);
+            }
+        }
     }
 
     /// A named parameter's value, if set.

@@ -116,9 +116,9 @@ impl Lines {
                     return Ok(());
                 };
                 if self.at != offset {
-                    handle
-                        .seek(SeekFrom::Start(offset as u64))
-                        .map_err(LineError::Io)?;
+                    // Relative: a jump within the buffer (a short loop) keeps it.
+                    let delta = offset as i64 - self.at as i64;
+                    handle.seek_relative(delta).map_err(LineError::Io)?;
                 }
                 let limit = MAX_LINE_BYTES as u64 + 1;
                 handle
