@@ -476,14 +476,14 @@ fn new_words_through_the_program_string_equal_the_engine() {
     fmu.free(c);
 }
 
-/// O-word control flow (LinuxCNC "O Codes") through the FMU's `program` string, tick for tick
-/// equal to the library: a subroutine with arguments called from a while loop (the "Looping"
-/// sawtooth made of calls) and a repeat; the last move ends at the known corner.
+/// O-word control flow (LinuxCNC "O Codes") and G93 through the FMU's `program` string, tick for
+/// tick equal to the library: a subroutine with arguments called from a while loop (the
+/// "Looping" sawtooth made of calls), a repeat, an inverse-time move; the end is the known corner.
 #[test]
 fn o_words_through_the_program_string_equal_the_engine() {
     let text = "G21 G90 F3000\no<tooth> sub\nG1 X0\nG1 Y#1 X1\no<tooth> endsub\n#1 = 0\n\
                 o101 while [#1 LT 5]\no<tooth> call [#1 / 10]\n#1 = [#1 + 1]\no101 endwhile\n\
-                o102 repeat [2]\nG91 G1 Y0.5\no102 endrepeat\nG90\nM2\n";
+                o102 repeat [2]\nG91 G1 Y0.5\no102 endrepeat\nG90\nG93 G1 X2 F60\nG94 G1 X1 F3000\nM2\n";
     let fmu = Fmu::load();
     let c = fmu.instantiate("owords");
     assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
@@ -503,7 +503,7 @@ fn o_words_through_the_program_string_equal_the_engine() {
         assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
         assert!(n < 200_000);
     }
-    // Last tooth at Y 0.4, then two G91 steps of 0.5: (1, 1.4).
+    // Last tooth at Y 0.4, then two G91 steps of 0.5, out to X2 (G93) and back: (1, 1.4).
     let end = ["x", "y"].map(|a| fmu.real(c, &format!("{a}.command.position")));
     assert!(
         (end[0] - 1e-3).abs() < 1e-12 && (end[1] - 1.4e-3).abs() < 1e-12,

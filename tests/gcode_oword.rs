@@ -245,3 +245,32 @@ fn errors_are_located() {
         assert_eq!(error(text), want, "{text}");
     }
 }
+
+/// A saved engine state in the middle of a loop inside a subroutine call restores to the same
+/// motion (the open constructs, the call stack and its saved locals are part of the state;
+/// FMI 2.0 fmi2GetFMUstate).
+#[test]
+fn engine_state_round_trip_inside_a_loop_and_a_call() {
+    let program =
+        "G21 F3000\no<tooth> sub\n#<n> = 0\no2 repeat [3]\nG1 X0\nG1 Y[#1 + #<n>] X1\n#<n> = [#<n> + 0.1]\n\
+                   o2 endrepeat\no<tooth> endsub\n#<k> = 0\no1 while [#<k> LT 4]\no<tooth> call [#<k>]\n\
+                   #<k> = [#<k> + 1]\no1 endwhile\nM2\n";
+    let m = Machine::default();
+    let new = || cnc_motion::engine::Engine::new(program, "p", &m).unwrap();
+    let mut a = new();
+    a.advance(0.7).unwrap();
+    let state = a.save_state();
+    let mut b = new();
+    b.restore_state(&state).unwrap();
+    while !a.finished() {
+        a.advance(0.01).unwrap();
+        b.advance(0.01).unwrap();
+        assert_eq!(a.tick().p, b.tick().p);
+    }
+    assert!(b.finished());
+    let end = b.tick().p;
+    assert!(
+        (end[0] - 1e-3).abs() < 1e-12 && (end[1] - 3.2e-3).abs() < 1e-12,
+        "{end:?}"
+    );
+}
