@@ -160,6 +160,13 @@ fn recursion_forward_definition_and_indirection() {
     assert_eq!(x, vec![7.0]);
 }
 
+/// A program number heading the program (LinuxCNC "Fanuc-Style Numbered Programs": `o1 (Example
+/// 1)`) is accepted and has no effect.
+#[test]
+fn program_number_at_the_head() {
+    assert_eq!(xs("%\nO0001 (PART 1)\nG1 F100 X1\nM30\n%\n"), vec![1.0]);
+}
+
 /// Block delete on O-word lines: with the switch on a `/o…` line is skipped, with it off it runs.
 #[test]
 fn block_delete_on_o_word_lines() {
@@ -241,6 +248,10 @@ fn errors_are_located() {
         ("o1 if [1] G0 X1\no1 endif\n", "t.ngc:1:11: o1: expected '[expression]' or the end of the line"),
         ("G0 X1 o1 if [1]\n", "t.ngc:1:7: an O-word must begin its line (LinuxCNC \"O Codes\")"),
         ("o sub\n", "t.ngc:1:1: an O-word needs a number (1 to 9 digits) or a <name>"),
+        (
+            "G0 X1\nO100\nG0 X2\nM99\n",
+            "t.ngc:2:1: unsupported Fanuc-style subprogram o100 (… M99); write o100 sub … o100 endsub",
+        ),
     ] {
         assert_eq!(error(text), want, "{text}");
     }

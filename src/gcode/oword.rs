@@ -23,6 +23,9 @@ pub enum Keyword {
     EndRepeat,
     Break,
     Continue,
+    /// A bare `O1234` (a comment may follow): a program number (LinuxCNC "Fanuc-Style
+    /// Numbered Programs").
+    Number,
 }
 
 const KEYWORDS: [(&str, Keyword); 15] = [
@@ -140,10 +143,11 @@ fn parse_head(b: &[u8], o: usize, params: Option<&Params>) -> Located<Head> {
     let start = i;
     let len = b[i..].iter().take_while(|c| c.is_ascii_alphabetic()).count();
     let word = &b[start..start + len];
-    let Some(&(_, keyword)) = KEYWORDS
+    let bare = len == 0 && matches!(b.get(start), None | Some(b'(' | b';'));
+    let found = KEYWORDS
         .iter()
-        .find(|(k, _)| word.eq_ignore_ascii_case(k.as_bytes()))
-    else {
+        .find(|(k, _)| word.eq_ignore_ascii_case(k.as_bytes()));
+    let Some(&(_, keyword)) = found.or(bare.then_some(&("", Keyword::Number))) else {
         let msg = format!(
             "{}: unknown O-word keyword '{}' (sub, endsub, call, return, if, elseif, else, endif, \
              while, endwhile, do, repeat, endrepeat, break, continue)",

@@ -167,6 +167,14 @@ impl Reader {
                 Ok(())
             }
             Keyword::Break | Keyword::Continue => self.leave_pass(line, next, &head),
+            // A program number heads a program; later it would start an M98/M99 subprogram.
+            Keyword::Number if self.motion.is_none() => Ok(()),
+            Keyword::Number => {
+                let l = head.shown();
+                let msg =
+                    format!("unsupported Fanuc-style subprogram {l} (… M99); write {l} sub … {l} endsub");
+                Err(self.error(line, head.col, msg))
+            }
         }
     }
 
