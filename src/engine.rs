@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
-const STATE_VERSION: u32 = 3; // 3: reader NC state (tools, offsets, compensation, parameters)
+const STATE_VERSION: u32 = 4; // 3: reader NC state (tools, offsets, compensation, parameters); 4: O-word flow, G93, inch setup
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;

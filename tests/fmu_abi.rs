@@ -406,7 +406,7 @@ fn extreme_parameters_are_refused_through_the_c_abi() {
 /// the radius (2 mm right of the first edge, y = −2 mm).
 #[test]
 fn compensated_program_through_the_program_string_equals_the_engine() {
-    let text = "G21 G90 G17 F3000\nG10 L2 P1 X1\n/G0 X50\nG0 X-1 Y0\nG42.1 D2 G1 X9 Y0\nX29\n\
+    let text = "G21 G90 G17 F3000\nG10 L2 P1 X1\n/G0 X50\nG0 X-1 Y0\nG42.1 D4 G1 X9 Y0\nX29\n\
                 G3 X39 Y10 R10\nG1 Y30\nX9\nG40 X-1 Y-1\nG92 X0 Y0\nG0 X1\nM2\n";
     let fmu = Fmu::load();
     let c = fmu.instantiate("comp");
@@ -473,5 +473,41 @@ fn new_words_through_the_program_string_equal_the_engine() {
     assert!((z_min + 0.002).abs() < 1e-9, "{z_min}");
     let end = ["x", "y", "z"].map(|a| fmu.real(c, &format!("{a}.command.position")));
     assert_eq!(end, [0.0, 0.0, 0.0], "G28 ends at the home position");
+    fmu.free(c);
+}
+
+/// O-word control flow (LinuxCNC "O Codes") and G93 through the FMU's `program` string, tick for
+/// tick equal to the library: a subroutine with arguments called from a while loop (the
+/// "Looping" sawtooth made of calls), a repeat, an inverse-time move; the end is the known corner.
+#[test]
+fn o_words_through_the_program_string_equal_the_engine() {
+    let text = "G21 G90 F3000\no<tooth> sub\nG1 X0\nG1 Y#1 X1\no<tooth> endsub\n#1 = 0\n\
+                o101 while [#1 LT 5]\no<tooth> call [#1 / 10]\n#1 = [#1 + 1]\no101 endwhile\n\
+                o102 repeat [2]\nG91 G1 Y0.5\no102 endrepeat\nG90\nG93 G1 X2 F60\nG94 G1 X1 F3000\nM2\n";
+    let fmu = Fmu::load();
+    let c = fmu.instantiate("owords");
+    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
+    let finished_vr = fmu.vr("status.finished");
+    let machine = cnc_motion::config::Machine::default();
+    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
+        .unwrap()
+        .with_servo(true);
+    let (mut n, mut done) = (0, 0);
+    while done == 0 {
+        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
+        engine.advance(1e-3).unwrap();
+        n += 1;
+        assert_eq!(fmu.real(c, "y.command.position"), engine.tick().p[1]);
+        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
+        assert!(n < 200_000);
+    }
+    // Last tooth at Y 0.4, then two G91 steps of 0.5, out to X2 (G93) and back: (1, 1.4).
+    let end = ["x", "y"].map(|a| fmu.real(c, &format!("{a}.command.position")));
+    assert!(
+        (end[0] - 1e-3).abs() < 1e-12 && (end[1] - 1.4e-3).abs() < 1e-12,
+        "{end:?}"
+    );
     fmu.free(c);
 }

@@ -62,7 +62,7 @@ fn corpus() -> Vec<(String, String)> {
         "default.ngc".to_string(),
         include_str!("../resources/default.ngc").to_string(),
     )];
-    // Cutter compensation (issue 14): seed 003's pocket with G41.1 D5.
+    // Cutter compensation (issue 14): seed 003's pocket with G41.1 D10.
     out.push((
         "seed003_pocket_g41.ngc".to_string(),
         include_str!("../examples/seed003_pocket_g41.ngc").to_string(),

@@ -128,10 +128,10 @@ fn refusals_name_the_place() {
             "t.ngc:1:5: unsupported G10 L5 (L1, L2, L10, L20 are)",
         ),
         ("G5 X1 Y1 I1 J0 P1 Q1\n", "t.ngc:1:1: unsupported G5 (splines)"),
-        ("G93 G1 X1 F1\n", "t.ngc:1:1: unsupported G93 (inverse-time feed)"),
+        ("G95 G1 X1 F1\n", "t.ngc:1:1: unsupported G95 (feed per revolution)"),
         (
             "O100 sub\n",
-            "t.ngc:1:1: unsupported O-word (subroutines and control flow)",
+            "t.ngc:1:1: o100 sub without o100 endsub",
         ),
         (
             "G1 X#<a> F100\n",

@@ -89,13 +89,13 @@ fn arcs(text: &str, toml: &str) -> Vec<([f64; 2], f64, bool)> {
 
 const SQUARE: &str = "G0 X10 Y5\nG1 F1000 X10 Y0\nX20\nY20\nX0\nY0\nX10\nG40 X10 Y5\nM2\n";
 
-/// LinuxCNC "G41, G42" (tool left / right of the programmed path) and "G41.1, G42.1" (radius in
+/// LinuxCNC "G41, G42" (tool left / right of the programmed path) and "G41.1, G42.1" (diameter in
 /// the D word): a 20 mm square run counter-clockwise. G41 puts a 2 mm tool inside: every corner is
 /// concave, reached by the intersection of the offset edges; entry ends on the offset of the next
 /// edge's start, exit starts at the offset of the last edge's end.
 #[test]
 fn inside_corners_by_intersection() {
-    let text = SQUARE.replace("G1 F1000", "G41.1 D2 G1 F1000");
+    let text = SQUARE.replace("G1 F1000", "G41.1 D4 G1 F1000");
     let want = [
         [10.0, 5.0],
         [10.0, 2.0],
@@ -117,7 +117,7 @@ fn inside_corners_by_intersection() {
 /// meets the extended edges at the corner of the offset square.
 #[test]
 fn outside_corners_by_arc_or_extension() {
-    let text = SQUARE.replace("G1 F1000", "G42.1 D2 G1 F1000");
+    let text = SQUARE.replace("G1 F1000", "G42.1 D4 G1 F1000");
     let a = arcs(&text, "");
     assert_eq!(a.len(), 4);
     for ((c, r, cw), corner) in a.iter().zip([[20.0, 0.0], [20.0, 20.0], [0.0, 20.0], [0.0, 0.0]]) {
@@ -155,8 +155,8 @@ fn seed003_with_transition_arcs() {
     let centres: Vec<[f64; 2]> = a.iter().map(|x| x.0).collect();
     assert_eq!(centres[0], [40.0, 80.0]);
     assert_eq!(centres[3], [110.0, 70.0]);
-    // The radius given in the word (G41.1 D5) is the same path as D1 from the table.
-    let word = program.replace("N10 G41", "N10 G41.1 D5");
+    // The diameter given in the word (G41.1 D10) is the same path as D1 from the table.
+    let word = program.replace("N10 G41", "N10 G41.1 D10");
     assert_eq!(
         vertices(&word, ""),
         vertices(&program, "[tool.1]\nradius_mm = 5\n")
@@ -168,7 +168,7 @@ fn seed003_with_transition_arcs() {
 fn gouges_are_located_errors() {
     let m = machine("");
     let e = run(
-        "G0 X0 Y0\nG41.1 D5 G1 X10 Y0 F100\nG3 X10 Y6 R3\nG1 X0\nG40 X0 Y0\n",
+        "G0 X0 Y0\nG41.1 D10 G1 X10 Y0 F100\nG3 X10 Y6 R3\nG1 X0\nG40 X0 Y0\n",
         &m,
     )
     .unwrap_err();
@@ -178,7 +178,7 @@ fn gouges_are_located_errors() {
     );
     // A 4 mm slot for a 10 mm tool: the offset edges of the right end do not meet.
     let e = run(
-        "G0 X0 Y-10\nG41.1 D5 G1 X0 Y0 F100\nX20\nY4\nX0\nY0\nG40 X0 Y-10\n",
+        "G0 X0 Y-10\nG41.1 D10 G1 X0 Y0 F100\nX20\nY4\nX0\nY0\nG40 X0 Y-10\n",
         &m,
     )
     .unwrap_err();
@@ -186,18 +186,18 @@ fn gouges_are_located_errors() {
         e.starts_with("t.ngc:4:1: concave corner cannot be reached by the tool (radius 5.0000 mm)"),
         "{e}"
     );
-    let e = run("G0 X0 Y0\nG41.1 D1 G2 X2 Y0 R1 F100\n", &m).unwrap_err();
+    let e = run("G0 X0 Y0\nG41.1 D2 G2 X2 Y0 R1 F100\n", &m).unwrap_err();
     assert_eq!(
         e,
         "t.ngc:2:1: the G41/G42 entry move must be a straight line (G0/G1)"
     );
-    let e = run("G41.1 D1\nG42.1 D1\n", &m).unwrap_err();
+    let e = run("G41.1 D2\nG42.1 D2\n", &m).unwrap_err();
     assert!(
         e.starts_with("t.ngc:2:1: cutter compensation is already on"),
         "{e}"
     );
     let e = run("G41.1 D-1\n", &m).unwrap_err();
-    assert_eq!(e, "t.ngc:1:7: D (tool radius) must not be negative");
+    assert_eq!(e, "t.ngc:1:7: D (tool diameter) must not be negative");
 }
 
 /// Seed 003's example through the whole engine: it runs to the end, at the programmed exit.
@@ -244,14 +244,14 @@ proptest::proptest! {
             let t = t * std::f64::consts::TAU;
             [size * t.cos(), size * t.sin()]
         }).collect();
-        let mut text = format!("G0 X{:.6} Y{:.6}\nG42.1 D{r:.6} G1 F1000 X{:.6} Y{:.6}\n", 3.0 * pts[0][0], 3.0 * pts[0][1], pts[0][0], pts[0][1]);
+        let mut text = format!("G0 X{:.6} Y{:.6}\nG42.1 D{:.6} G1 F1000 X{:.6} Y{:.6}\n", 3.0 * pts[0][0], 3.0 * pts[0][1], 2.0 * r, pts[0][0], pts[0][1]);
         for p in pts.iter().skip(1).chain(std::iter::once(&pts[0])) {
             text += &format!("X{:.6} Y{:.6}\n", p[0], p[1]);
         }
         text += &format!("G40 X{:.6} Y{:.6}\nM2\n", 3.0 * pts[0][0], 3.0 * pts[0][1]);
         let toml = if extension { "cutter_corner = \"extension\"" } else { "" };
         let blocks = run(&text, &machine(toml)).unwrap();
-        let r = (r * 1e6).round() / 1e6;
+        let r = (2.0 * r * 1e6).round() / 2e6;
         let edges: Vec<([f64; 2], [f64; 2])> = (0..pts.len()).map(|i| (pts[i], pts[(i + 1) % pts.len()])).collect();
         let mut last: Option<[f64; 3]> = None;
         let n = blocks.len();
@@ -283,7 +283,7 @@ proptest::proptest! {
 /// elements run at the tool's place in order, before the G40 exit (found by the fuzz harness).
 #[test]
 fn blocks_without_plane_motion_keep_their_order() {
-    let text = "G0 X0 Y-5\nG41.1 D1 G1 X0 Y0 F100\nX10\nX10\nZ-1\nG4 P0.5\nY10\nY10\nG40 X0 Y10\nG0 Z5\nM2\n";
+    let text = "G0 X0 Y-5\nG41.1 D2 G1 X0 Y0 F100\nX10\nX10\nZ-1\nG4 P0.5\nY10\nY10\nG40 X0 Y10\nG0 Z5\nM2\n";
     let b = run(text, &machine("")).unwrap();
     let z: Vec<f64> = ends(&b).iter().map(|p| p[2]).collect();
     assert_eq!(z.last(), Some(&5.0), "{z:?}");
@@ -296,7 +296,7 @@ fn blocks_without_plane_motion_keep_their_order() {
 /// arcs, since an arc needs a programmed feed (found by the fuzz harness).
 #[test]
 fn compensated_rapids_have_no_corner_arcs() {
-    let text = SQUARE.replace("G1 F1000", "G42.1 D2 G0");
+    let text = SQUARE.replace("G1 F1000", "G42.1 D4 G0");
     assert!(arcs(&text, "").is_empty());
     let want = [
         [10.0, 5.0],
@@ -316,7 +316,7 @@ fn compensated_rapids_have_no_corner_arcs() {
 /// offset vertices in (Z, X), with Y untouched.
 #[test]
 fn compensation_in_the_xz_plane() {
-    let text = "G18 G0 Z10 X5\nG41.1 D2 G1 F1000 Z10 X0\nZ20\nX20\nZ0\nX0\nZ10\nG40 Z10 X5\nM2\n";
+    let text = "G18 G0 Z10 X5\nG41.1 D4 G1 F1000 Z10 X0\nZ20\nX20\nZ0\nX0\nZ10\nG40 Z10 X5\nM2\n";
     let zx: Vec<[f64; 3]> = ends(&run(text, &machine("")).unwrap())
         .iter()
         .map(|p| [(p[2] * 1e6).round() / 1e6, (p[0] * 1e6).round() / 1e6, p[1]])

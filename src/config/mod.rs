@@ -4,6 +4,7 @@
 
 pub mod nc;
 pub mod ranges;
+pub mod units;
 
 pub use nc::{CutterCorner, NcSetup, Tool};
 
@@ -198,6 +199,9 @@ pub struct MachineFile {
     pub tool: Option<std::collections::BTreeMap<String, nc::ToolFile>>,
     pub work_offset: Option<std::collections::BTreeMap<String, nc::PointFile>>,
     pub home: Option<std::collections::BTreeMap<String, nc::PointFile>>,
+    pub max_loop_iterations: Option<i64>,
+    /// Length unit of the file's numbers: mm (default) or inch (`units.rs`).
+    pub units: Option<units::Units>,
 }
 
 /// One millimetre (m) and one mm/min (m/s): machine files and tests write their numbers in these.
@@ -229,7 +233,9 @@ impl Machine {
 
     /// A parsed machine file over the defaults, not yet range-checked.
     fn apply(f: &MachineFile) -> Result<Machine, ranges::RangeError> {
+        let f = &units::to_mm(f);
         let mut m = Machine::default();
+        m.nc.inch = f.units == Some(units::Units::Inch);
         if let Some(v) = f.interpolation_period_s {
             m.interpolation_period = v;
         }
@@ -286,6 +292,9 @@ impl Machine {
         }
         if let Some(h) = &f.home {
             m.nc.set_home(h)?;
+        }
+        if let Some(n) = f.max_loop_iterations {
+            m.nc.set_max_loop_iterations(n)?;
         }
         if let Some(servo) = &f.servo {
             for (i, s) in [&servo.x, &servo.y, &servo.z].into_iter().enumerate() {

@@ -48,6 +48,33 @@ pub struct NcSetup {
     pub work_offsets: [Vec3; 9],
     /// G28 and G30 home positions (m, machine coordinates).
     pub home: [Vec3; 2],
+    /// O-word loops: most jumps back (loop passes) in one run of a program.
+    #[serde(default = "default_max_loop_iterations")]
+    pub max_loop_iterations: u64,
+    /// An inch machine (`units = "inch"`): programs start in G20.
+    #[serde(default)]
+    pub inch: bool,
+}
+
+/// Default and largest `max_loop_iterations`.
+pub const DEFAULT_MAX_LOOP_ITERATIONS: u64 = 1_000_000;
+pub const MAX_LOOP_ITERATIONS: u64 = 1_000_000_000;
+
+fn default_max_loop_iterations() -> u64 {
+    DEFAULT_MAX_LOOP_ITERATIONS
+}
+
+impl NcSetup {
+    /// `max_loop_iterations`, 1 … MAX_LOOP_ITERATIONS.
+    pub fn set_max_loop_iterations(&mut self, n: i64) -> Result<(), RangeError> {
+        if n < 1 || n as u64 > MAX_LOOP_ITERATIONS {
+            let key = "max_loop_iterations".to_string();
+            let m = format!("max_loop_iterations = {n} out of range (1 … {MAX_LOOP_ITERATIONS})");
+            return Err(range_error(key, m));
+        }
+        self.max_loop_iterations = n as u64;
+        Ok(())
+    }
 }
 
 impl Default for NcSetup {
@@ -59,6 +86,8 @@ impl Default for NcSetup {
             tools: BTreeMap::new(),
             work_offsets: [[0.0; 3]; 9],
             home: [[0.0; 3]; 2],
+            max_loop_iterations: DEFAULT_MAX_LOOP_ITERATIONS,
+            inch: false,
         }
     }
 }

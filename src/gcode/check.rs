@@ -45,6 +45,20 @@ pub fn feed(value: f64, unit: f64) -> Result<f64, String> {
     }
 }
 
+/// Largest G93 F: a move in 60 µs.
+pub const MAX_INVERSE_FEED: f64 = 1e6;
+
+/// A G93 F (moves per minute): 0 < F ≤ MAX_INVERSE_FEED.
+pub fn inverse_feed(value: f64) -> Result<(), String> {
+    if value > 0.0 && value <= MAX_INVERSE_FEED {
+        Ok(())
+    } else {
+        Err(format!(
+            "inverse-time F{value} out of range (0 < F ≤ {MAX_INVERSE_FEED} per minute: the move takes 1/F minutes)"
+        ))
+    }
+}
+
 /// A dwell G4 P (s): 0 ≤ P ≤ MAX_DWELL_S.
 pub fn dwell(value: f64) -> Result<f64, String> {
     if value < 0.0 {

@@ -5,6 +5,7 @@
 //! (`check`).
 
 pub mod check;
+pub mod oword;
 pub mod params;
 mod reader;
 pub mod source;

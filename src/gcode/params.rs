@@ -51,6 +51,69 @@ impl Params {
     }
 }
 
+/// Parameters local to a call level (LinuxCNC "O Codes", "Subroutines"): #1 … #30 and the named
+/// ones not starting with `_`, saved at a call and given back at its return.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Locals {
+    numbered: Vec<(usize, f64)>,
+    named: Vec<(String, f64)>,
+}
+
+/// Numbered parameters local to a call level: #1 … LOCAL_NUMBERED.
+pub const LOCAL_NUMBERED: usize = 30;
+
+impl Params {
+    /// Enter a subroutine: the caller's locals are saved (returned), the arguments become #1,
+    /// #2, … #N (#N+1 … #30 keep the caller's values), named locals start unset, and
+    /// `#<_value>`, `#<_value_returned>` are cleared.
+    pub fn enter_call(&mut self, args: &[f64]) -> Locals {
+        let numbered = (1..=LOCAL_NUMBERED)
+            .filter_map(|n| self.numbered.get(&n).map(|&v| (n, v)))
+            .collect();
+        let local: Vec<String> = self
+            .named
+            .keys()
+            .filter(|k| !k.starts_with('_'))
+            .cloned()
+            .collect();
+        let named = local
+            .into_iter()
+            .filter_map(|k| self.named.remove(&k).map(|v| (k, v)))
+            .collect();
+        for (i, &v) in args.iter().enumerate() {
+            self.numbered.insert(i + 1, v);
+        }
+        self.set_named("_value", 0.0);
+        self.set_named("_value_returned", 0.0);
+        Locals { numbered, named }
+    }
+
+    /// Leave a subroutine: its locals are dropped, the caller's given back.
+    pub fn leave_call(&mut self, saved: Locals) {
+        for n in 1..=LOCAL_NUMBERED {
+            self.numbered.remove(&n);
+        }
+        self.named.retain(|k, _| k.starts_with('_'));
+        self.numbered.extend(saved.numbered);
+        self.named.extend(saved.named);
+    }
+
+    /// Set a global named parameter at once (`_value` of a return).
+    pub fn set_named(&mut self, name: &str, v: f64) {
+        match self.named.get_mut(name) {
+            Some(x) => *x = v,
+            None => {
+                self.named.insert(name.to_string(), v);
+            }
+        }
+    }
+
+    /// A named parameter's value, if set.
+    pub fn named(&self, name: &str) -> Option<f64> {
+        self.named.get(name).copied()
+    }
+}
+
 /// A cursor over one line's bytes for values and expressions.
 pub struct Expr<'a> {
     pub b: &'a [u8],

@@ -1,8 +1,11 @@
 //! The streaming reader: a cursor into the program text and the modal state, one line at a time.
 
+mod arc;
 mod comp;
 mod comp_geom;
 mod cycles;
+mod flow;
+mod inverse;
 mod modal;
 mod offsets;
 mod words;
@@ -82,6 +85,9 @@ pub struct Reader {
     g92: Vec3,
     #[serde(default)]
     g92_on: bool,
+    /// G93 inverse-time feed (true) / G94 units per minute.
+    #[serde(default)]
+    inverse_time: bool,
     /// Cutter compensation: mode, and the blocks held back for one block of look-ahead.
     #[serde(default)]
     comp: Box<comp::Comp>,
@@ -100,6 +106,12 @@ pub struct Reader {
     sets: Sets,
     #[serde(skip)]
     line_buf: Vec<u8>,
+    /// O-word control flow: subroutines seen, open loops and conditionals, calls.
+    #[serde(default)]
+    flow: Box<flow::Flow>,
+    /// Where the line just executed sends the cursor (an O-word jump), instead of the next line.
+    #[serde(skip)]
+    jump: Option<flow::Place>,
 }
 
 /// What the G and M words of a line ask for.
@@ -141,6 +153,7 @@ impl Reader {
             work: 0,
             g92: [0.0; 3],
             g92_on: false,
+            inverse_time: false,
             comp: Box::default(),
             cycle: cycles::Cycle::default(),
             pending: Default::default(),
@@ -148,6 +161,8 @@ impl Reader {
             params: Box::default(),
             sets: Vec::new(),
             line_buf: Vec::new(),
+            flow: Box::default(),
+            jump: None,
         }
     }
 
@@ -161,6 +176,9 @@ impl Reader {
     pub fn with_machine(mut self, machine: &crate::config::Machine) -> Reader {
         self.arc_tolerance = machine.arc_radius_tolerance;
         self.corner = machine.nc.cutter_corner;
+        if machine.nc.inch {
+            self.unit = 25.4e-3;
+        }
         self.nc = Box::new(machine.nc.clone());
         self
     }
@@ -202,10 +220,16 @@ impl Reader {
             // Advance only past a line that was read without error, so a retry reports it again.
             let block = result.inspect_err(|_| self.lines.reset())?;
             if end == 0 {
+                self.check_flow_closed()?;
                 break;
             }
-            self.offset += end;
-            self.line += 1;
+            match self.jump.take() {
+                Some(p) => (self.offset, self.line) = (p.offset, p.line),
+                None => {
+                    self.offset += end;
+                    self.line += 1;
+                }
+            }
             if let Some(b) = block {
                 return Ok(Some(b));
             }
@@ -248,6 +272,19 @@ impl Reader {
             deleted = raw.replacen('/', " ", 1);
             raw = &deleted;
         }
+        if let Some(head) = super::oword::head(raw, Some(&self.params)) {
+            let head = head.map_err(|(c, m)| self.error(line, c as u32 + 1, m))?;
+            let here = flow::Place {
+                offset: self.offset,
+                line,
+            };
+            let next = flow::Place {
+                offset: self.offset + buf.len(),
+                line: line.saturating_add(1),
+            };
+            self.o_word(here, next, raw, head)?;
+            return Ok(None);
+        }
         let mut words = std::mem::take(&mut self.words);
         let mut sets = std::mem::take(&mut self.sets);
         let parsed = split_with(raw, &mut words, &self.params, &mut sets)
@@ -271,6 +308,7 @@ impl Reader {
             mut r,
             p,
             extra,
+            f,
         } = self.read_words(line, words)?;
         self.apply_tool(line, &codes, &extra, &mut axes)?;
         if let Some((code, col)) = codes.comp {
@@ -295,23 +333,7 @@ impl Reader {
             let block = self.block(line, Motion::Dwell { seconds });
             return Ok(Some(self.with_stop(block, &codes)));
         }
-        let any_axis = axes.iter().any(Option::is_some);
-        let motion = match codes.motion {
-            Some((m, col)) => Some((m, col)),
-            None if any_axis => match self.motion {
-                Some(m) => Some((m, axes.iter().flatten().map(|a| a.1).min().unwrap_or(1))),
-                None => {
-                    let col = axes.iter().flatten().map(|a| a.1).min().unwrap_or(1);
-                    return Err(self.error(
-                        line,
-                        col,
-                        "axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
-                    ));
-                }
-            },
-            None => None,
-        };
-        let mut block = None;
+        let motion = self.motion_of(line, &codes, &axes)?;
         if let Some((m, col)) = motion.filter(|m| m.0 >= 73) {
             let fresh = !matches!(self.motion, Some(73..));
             self.motion = Some(m);
@@ -319,24 +341,18 @@ impl Reader {
             let (r, q) = (r, extra.q);
             return self.canned(line, col, m, fresh, cycles::CycleWords { xy, r, p, q }, &codes);
         }
+        let mut block = None;
         if let Some((m, col)) = motion {
-            self.motion = Some(m);
-            let to = self.target(line, &axes, non_modal == offsets::NonModal::Machine)?;
-            if m != 0 && self.feed <= 0.0 && (any_axis || m >= 2) {
-                return Err(self.error(line, col, format!("G{m} with no feed rate: F was never set")));
-            }
-            block = match m {
-                0 | 1 if !any_axis => None,
-                0 => Some(self.block(line, Motion::Rapid { to })),
-                1 => Some(self.block(line, Motion::Linear { to })),
-                _ => Some(self.arc(line, col, m == 2, to, ijk, r, p)?),
+            let machine = non_modal == offsets::NonModal::Machine;
+            let words = words::LineWords {
+                axes,
+                ijk,
+                r,
+                p,
+                extra,
+                f,
             };
-            if let Some(b) = &block {
-                self.position = match b.motion {
-                    Motion::Rapid { to } | Motion::Linear { to } | Motion::Arc { to, .. } => to,
-                    _ => self.position,
-                };
-            }
+            block = self.move_block(line, m, col, &words, machine)?;
         } else if let Some((_, col)) = ijk.iter().flatten().next().or(r.as_ref()) {
             return Err(self.error(line, *col, "arc words without G2/G3"));
         }
@@ -347,6 +363,60 @@ impl Reader {
                 self.block(line, Motion::Stop(kind))
             }),
         })
+    }
+
+    /// The motion of a line: its G0…G3 / cycle code, or the modal one when axis words are given.
+    fn motion_of(
+        &self,
+        line: u32,
+        codes: &LineCodes,
+        axes: &[words::Located; 3],
+    ) -> Result<Option<(u8, u32)>, ProgramError> {
+        let first_axis = || axes.iter().flatten().map(|a| a.1).min();
+        Ok(match (codes.motion, first_axis()) {
+            (Some(m), _) => Some(m),
+            (None, Some(col)) => match self.motion {
+                Some(m) => Some((m, col)),
+                None => {
+                    let msg = "axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)";
+                    return Err(self.error(line, col, msg));
+                }
+            },
+            (None, None) => None,
+        })
+    }
+
+    /// A G0…G3 move to the axis words (None for G0/G1 without them); G93 sets its feed.
+    fn move_block(
+        &mut self,
+        line: u32,
+        m: u8,
+        col: u32,
+        w: &words::LineWords,
+        machine: bool,
+    ) -> Result<Option<Block>, ProgramError> {
+        self.motion = Some(m);
+        let any_axis = w.axes.iter().any(Option::is_some);
+        let to = self.target(line, &w.axes, machine)?;
+        let feeds = m != 0 && (any_axis || m >= 2);
+        if feeds && self.inverse_time && w.f.is_none() {
+            let msg = format!("G{m} in G93 needs F on its line (inverse time: the move takes 1/F minutes)");
+            return Err(self.error(line, col, msg));
+        }
+        if feeds && !self.inverse_time && self.feed <= 0.0 {
+            return Err(self.error(line, col, format!("G{m} with no feed rate: F was never set")));
+        }
+        let mut block = match m {
+            0 | 1 if !any_axis => return Ok(None),
+            0 => self.block(line, Motion::Rapid { to }),
+            1 => self.block(line, Motion::Linear { to }),
+            _ => self.arc(line, col, m == 2, to, w.ijk, w.r, w.p)?,
+        };
+        if let (true, Some((f, _))) = (self.inverse_time && m != 0, w.f) {
+            block.feed = inverse::feed(&block, f);
+        }
+        self.position = to;
+        Ok(Some(block))
     }
 
     /// End point of a motion from the axis words (G90/G91), each within the coordinate range.
@@ -429,133 +499,6 @@ impl Reader {
             motion,
             feed,
             path_mode: self.path_mode,
-        }
-    }
-
-    /// G2/G3 in the current plane, centre by I/J/K (relative or absolute) or by R.
-    #[allow(clippy::too_many_arguments)]
-    fn arc(
-        &self,
-        line: u32,
-        col: u32,
-        clockwise: bool,
-        to: Vec3,
-        ijk: [Option<(f64, u32)>; 3],
-        r: Option<(f64, u32)>,
-        p: Option<(f64, u32)>,
-    ) -> Result<Block, ProgramError> {
-        let name = if clockwise { "G2" } else { "G3" };
-        let (a, b, n) = plane_axes(self.plane);
-        let from = self.position;
-        // The centre word not in the plane (K in G17, J in G18, I in G19) is an error.
-        if let Some((_, c)) = ijk[n] {
-            let letter = [b'I', b'J', b'K'][n] as char;
-            return Err(self.error(line, c, format!("{letter} is not a centre word in this plane")));
-        }
-        let turns = match p {
-            None => 0,
-            Some((v, pc)) => check::turns(name, v).map_err(|m| self.error(line, pc, m))?,
-        };
-        let chord_a = to[a] - from[a];
-        let chord_b = to[b] - from[b];
-        let chord = chord_a.hypot(chord_b);
-        let mut center = from;
-        center[n] = 0.0;
-        if ijk[a].is_some() || ijk[b].is_some() {
-            if r.is_some() {
-                return Err(self.error(line, col, format!("{name}: give either I/J/K or R, not both")));
-            }
-            for &i in &[a, b] {
-                let off = ijk[i].map_or(0.0, |(v, _)| v * self.unit);
-                center[i] = if self.arc_absolute { off } else { from[i] + off };
-            }
-            let r1 = (from[a] - center[a]).hypot(from[b] - center[b]);
-            let r2 = (to[a] - center[a]).hypot(to[b] - center[b]);
-            if r1 <= 0.0 {
-                return Err(self.error(
-                    line,
-                    col,
-                    format!("{name}: the centre is the start point (radius zero)"),
-                ));
-            }
-            let miss = (r1 - r2).abs();
-            let tolerance_abs = self.arc_tolerance_abs();
-            if miss > tolerance_abs && miss > ARC_TOLERANCE_REL * r1 {
-                let msg = format!(
-                    "{name}: end point is {:.4} mm off the circle (radius {:.4} mm at the start, {:.4} mm at the end; \
-                     tolerance {:.4} mm or {} % of the radius, machine key arc_radius_tolerance_mm)",
-                    miss * 1e3,
-                    r1 * 1e3,
-                    r2 * 1e3,
-                    tolerance_abs * 1e3,
-                    ARC_TOLERANCE_REL * 100.0
-                );
-                return Err(self.error(line, col, msg));
-            }
-            if chord > 0.0 && miss > 0.0 {
-                // Within tolerance: move the centre onto the chord's bisector (by at most the
-                // tolerance), so the arc is an exact circle through both end points.
-                let (ua, ub) = (chord_a / chord, chord_b / chord);
-                let (ma, mb) = (0.5 * (from[a] + to[a]), 0.5 * (from[b] + to[b]));
-                let along = (center[a] - ma) * ua + (center[b] - mb) * ub;
-                center[a] -= along * ua;
-                center[b] -= along * ub;
-            }
-        } else if let Some((rv, rc)) = r {
-            let radius = rv.abs() * self.unit;
-            if chord == 0.0 {
-                return Err(self.error(line, rc, format!("{name}: a full circle needs I/J/K, not R")));
-            }
-            if radius <= 0.0 {
-                return Err(self.error(line, rc, format!("{name}: R must not be zero")));
-            }
-            let half = 0.5 * chord;
-            if half > radius * (1.0 + 1e-12) + self.arc_tolerance_abs() {
-                let msg = format!(
-                    "{name}: R{} is smaller than half the chord ({:.4} mm)",
-                    rv,
-                    half / self.unit
-                );
-                return Err(self.error(line, rc, msg));
-            }
-            let h = (radius * radius - half * half).max(0.0).sqrt();
-            // Left normal of the chord; G3 with R > 0 (at most half a circle) has its centre on
-            // the left, G2 on the right; R < 0 asks for the larger arc, centre on the other side.
-            let (la, lb) = (-chord_b / chord, chord_a / chord);
-            let side = if clockwise { -1.0 } else { 1.0 } * if rv < 0.0 { -1.0 } else { 1.0 };
-            center[a] = 0.5 * (from[a] + to[a]) + side * h * la;
-            center[b] = 0.5 * (from[b] + to[b]) + side * h * lb;
-        } else {
-            let words = match self.plane {
-                Plane::XY => "I/J",
-                Plane::XZ => "I/K",
-                Plane::YZ => "J/K",
-            };
-            return Err(self.error(
-                line,
-                col,
-                format!("{name} needs a centre ({words}) or a radius (R)"),
-            ));
-        }
-        Ok(self.block(
-            line,
-            Motion::Arc {
-                to,
-                center,
-                plane: self.plane,
-                clockwise,
-                turns,
-            },
-        ))
-    }
-
-    /// The absolute arc tolerance in force: the machine's for G21, 2.54 times it for G20
-    /// (0.028 mm → 0.0028 in, as LinuxCNC's two constants).
-    fn arc_tolerance_abs(&self) -> f64 {
-        if self.unit > 1e-3 {
-            self.arc_tolerance * 2.54
-        } else {
-            self.arc_tolerance
         }
     }
 }

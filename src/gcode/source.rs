@@ -53,6 +53,8 @@ impl From<&str> for ProgramSource {
 pub struct Lines {
     pub source: ProgramSource,
     handle: Option<BufReader<File>>,
+    /// Byte offset the open file is at (an O-word jump reads elsewhere: seek).
+    at: usize,
 }
 
 impl Clone for Lines {
@@ -60,6 +62,7 @@ impl Clone for Lines {
         Lines {
             source: self.source.clone(),
             handle: None,
+            at: 0,
         }
     }
 }
@@ -73,7 +76,11 @@ pub enum LineError {
 
 impl Lines {
     pub fn new(source: ProgramSource) -> Lines {
-        Lines { source, handle: None }
+        Lines {
+            source,
+            handle: None,
+            at: 0,
+        }
     }
 
     /// Forget the open file (after an error, so that a retry starts again at the offset).
@@ -103,10 +110,16 @@ impl Lines {
                     let mut file = File::open(path).map_err(LineError::Io)?;
                     file.seek(SeekFrom::Start(offset as u64)).map_err(LineError::Io)?;
                     self.handle = Some(BufReader::new(file));
+                    self.at = offset;
                 }
                 let Some(handle) = self.handle.as_mut() else {
                     return Ok(());
                 };
+                if self.at != offset {
+                    // Relative: a jump within the buffer (a short loop) keeps it.
+                    let delta = offset as i64 - self.at as i64;
+                    handle.seek_relative(delta).map_err(LineError::Io)?;
+                }
                 let limit = MAX_LINE_BYTES as u64 + 1;
                 handle
                     .by_ref()
@@ -117,6 +130,7 @@ impl Lines {
                     self.handle = None;
                     return Err(LineError::TooLong);
                 }
+                self.at = offset + buf.len();
                 Ok(())
             }
         }

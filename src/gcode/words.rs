@@ -77,7 +77,7 @@ fn split_inner(
                     "unsupported expression '[' (expressions are not supported)",
                 ))
             }
-            b'o' | b'O' => return Err(err(i, "unsupported O-word (subroutines and control flow)")),
+            b'o' | b'O' => return Err(err(i, "an O-word must begin its line (LinuxCNC \"O Codes\")")),
             c if c.is_ascii_alphabetic() => {
                 let col = i;
                 i += 1;

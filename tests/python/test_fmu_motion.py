@@ -11,7 +11,7 @@ import cnc_motion_sim as sim
 from cnc_motion_sim.paths import ROOT, corpus_programs
 
 REL = 1e-9
-# Issue 14: seed 003's pocket with cutter compensation (G41.1 D5, G54, T/D/M6) through `program`.
+# Issue 14: seed 003's pocket with cutter compensation (G41.1 D10, G54, T/D/M6) through `program`.
 CORPUS_PROGRAMS = corpus_programs()
 PROGRAMS = [sim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS + [ROOT / "examples" / "seed003_pocket_g41.ngc"]
 

@@ -39,7 +39,8 @@ pub struct Comp {
 }
 
 impl Reader {
-    /// G40 / G41 / G42 (D: tool number, radius from the table) / G41.1 / G42.1 (D: the radius).
+    /// G40 / G41 / G42 (D: tool number, radius from the table) / G41.1 / G42.1 (D: the tool
+    /// diameter, LinuxCNC "G41.1, G42.1": "the ability to program the tool diameter").
     pub(super) fn set_comp(
         &mut self,
         line: u32,
@@ -54,12 +55,12 @@ impl Reader {
         let side = if code == 410 || code == 411 { 1.0 } else { -1.0 };
         let radius = if code == 411 || code == 421 {
             let Some((v, c)) = d else {
-                return Err(self.error(line, col, "G41.1/G42.1 needs D (the tool radius)"));
+                return Err(self.error(line, col, "G41.1/G42.1 needs D (the tool diameter)"));
             };
             if v < 0.0 {
-                return Err(self.error(line, c, "D (tool radius) must not be negative"));
+                return Err(self.error(line, c, "D (tool diameter) must not be negative"));
             }
-            check::length(b'D', v, self.unit).map_err(|m| self.error(line, c, m))?
+            0.5 * check::length(b'D', v, self.unit).map_err(|m| self.error(line, c, m))?
         } else {
             // D (LinuxCNC: the tool number; 840D: the loaded tool's edge), else the loaded tool.
             let n = self.tool.d.unwrap_or(self.tool.loaded);
@@ -100,46 +101,14 @@ impl Reader {
     fn compensate(&mut self, b: Block) -> Result<(), ProgramError> {
         let (a, bb, _) = plane_axes(self.comp.plane);
         let Some(elem) = Elem::of(&b, a, bb) else {
-            if matches!(b.motion, Motion::Stop(StopKind::End)) {
-                self.finish_held()?;
-                self.emit(b, None);
-            } else if self.comp.entry.is_some() || self.comp.held.is_some() {
-                if self.comp.deferred.len() >= MAX_DEFERRED {
-                    let m = format!(
-                        "more than {MAX_DEFERRED} blocks without motion in the plane while compensating"
-                    );
-                    return Err(self.error(b.line, 1, m));
-                }
-                self.comp.deferred.push(b);
-            } else {
-                self.comp.tool = b.from;
-                self.emit(b, None);
-            }
-            return Ok(());
+            return self.not_in_plane(b);
         };
         if self.comp.side != 0.0 && self.plane != self.comp.plane {
-            return Err(self.error(
-                b.line,
-                1,
-                "the plane changed while cutter compensation is on (G40 first)",
-            ));
+            let m = "the plane changed while cutter compensation is on (G40 first)";
+            return Err(self.error(b.line, 1, m));
         }
         let (side, r) = (self.comp.side, self.comp.radius);
-        if side != 0.0 {
-            if let Some(rr) = elem.offset_radius(side, r) {
-                if rr <= EPS {
-                    let Elem::Arc { radius, .. } = elem else {
-                        unreachable!()
-                    };
-                    let m = format!(
-                        "arc radius {:.4} mm is smaller than the tool radius {:.4} mm on this side (gouge)",
-                        radius * 1e3,
-                        r * 1e3
-                    );
-                    return Err(self.error(b.line, 1, m));
-                }
-            }
-        }
+        self.check_arc_radius(&b, &elem)?;
         if let Some(entry) = self.comp.entry.take() {
             if side == 0.0 {
                 self.emit(entry, None);
@@ -175,6 +144,44 @@ impl Reader {
             self.comp.entry = Some(b);
         } else {
             self.emit_plain(b);
+        }
+        Ok(())
+    }
+
+    /// A block without motion in the plane: held back while an element waits for its corner.
+    fn not_in_plane(&mut self, b: Block) -> Result<(), ProgramError> {
+        if matches!(b.motion, Motion::Stop(StopKind::End)) {
+            self.finish_held()?;
+            self.emit(b, None);
+        } else if self.comp.entry.is_some() || self.comp.held.is_some() {
+            if self.comp.deferred.len() >= MAX_DEFERRED {
+                let m =
+                    format!("more than {MAX_DEFERRED} blocks without motion in the plane while compensating");
+                return Err(self.error(b.line, 1, m));
+            }
+            self.comp.deferred.push(b);
+        } else {
+            self.comp.tool = b.from;
+            self.emit(b, None);
+        }
+        Ok(())
+    }
+
+    /// An arc whose offset radius on the tool's side vanishes is a gouge.
+    fn check_arc_radius(&self, b: &Block, elem: &Elem) -> Result<(), ProgramError> {
+        let (side, r) = (self.comp.side, self.comp.radius);
+        if side == 0.0 {
+            return Ok(());
+        }
+        if let (Some(rr), Elem::Arc { radius, .. }) = (elem.offset_radius(side, r), elem) {
+            if rr <= EPS {
+                let m = format!(
+                    "arc radius {:.4} mm is smaller than the tool radius {:.4} mm on this side (gouge)",
+                    radius * 1e3,
+                    r * 1e3
+                );
+                return Err(self.error(b.line, 1, m));
+            }
         }
         Ok(())
     }

@@ -52,46 +52,17 @@ impl Reader {
         if self.plane != Plane::XY || !self.absolute {
             return Err(self.error(line, col, format!("{name}: drilling cycles run in G17 G90 only")));
         }
+        if self.inverse_time {
+            let msg = format!("{name}: drilling cycles are not defined in G93 (inverse time); use G94");
+            return Err(self.error(line, col, msg));
+        }
         if self.feed <= 0.0 {
             return Err(self.error(line, col, format!("{name} with no feed rate: F was never set")));
         }
         if fresh {
             self.cycle.z0 = self.position[2];
         }
-        let (unit, offset) = (self.unit, self.axis_offset(2));
-        let z_of = |v: f64| v * unit + offset;
-        if let Some((v, _)) = w.r {
-            self.cycle.r = Some(z_of(v));
-        }
-        if let Some((v, _)) = w.xy[2] {
-            self.cycle.z = Some(z_of(v));
-        }
-        if let Some((v, c)) = w.p {
-            self.cycle.p = crate::gcode::check::dwell(v).map_err(|e| self.error(line, c, e))?;
-        }
-        if let Some((v, c)) = w.q {
-            if v <= 0.0 {
-                return Err(self.error(line, c, format!("{name}: Q (peck depth) must be positive")));
-            }
-            self.cycle.q = Some(v * self.unit);
-        }
-        let (Some(r), Some(z)) = (self.cycle.r, self.cycle.z) else {
-            return Err(self.error(
-                line,
-                col,
-                format!("{name} needs R (retract level) and Z (bottom)"),
-            ));
-        };
-        if z > r {
-            return Err(self.error(line, col, format!("{name}: the bottom Z is above R")));
-        }
-        let q = match (m, self.cycle.q) {
-            (73 | 83, None) => return Err(self.error(line, col, format!("{name} needs Q (peck depth)"))),
-            (73 | 83, Some(q)) if (r - z) / q > MAX_PECKS => {
-                return Err(self.error(line, col, format!("{name}: more than {MAX_PECKS} pecks")))
-            }
-            (_, q) => q.unwrap_or(f64::INFINITY),
-        };
+        let (r, z, q) = self.cycle_levels(line, col, m, &w)?;
         let xy = [w.xy[0], w.xy[1], None];
         let hole = self.target(line, &xy, false)?;
         let clear = if self.cycle.g99 { r } else { r.max(self.cycle.z0) };
@@ -127,6 +98,48 @@ impl Reader {
         let first = out.next();
         self.pending.extend(out);
         Ok(first.map(|b| self.with_stop(b, codes)))
+    }
+
+    /// R, Z, P, Q of the line into the cycle state (they stay in force); R, Z (m, machine) and
+    /// the peck depth (infinite for G81/G82).
+    fn cycle_levels(
+        &mut self,
+        line: u32,
+        col: u32,
+        m: u8,
+        w: &CycleWords,
+    ) -> Result<(f64, f64, f64), ProgramError> {
+        let (unit, offset) = (self.unit, self.axis_offset(2));
+        let z_of = |v: f64| v * unit + offset;
+        if let Some((v, _)) = w.r {
+            self.cycle.r = Some(z_of(v));
+        }
+        if let Some((v, _)) = w.xy[2] {
+            self.cycle.z = Some(z_of(v));
+        }
+        if let Some((v, c)) = w.p {
+            self.cycle.p = crate::gcode::check::dwell(v).map_err(|e| self.error(line, c, e))?;
+        }
+        if let Some((v, c)) = w.q {
+            if v <= 0.0 {
+                return Err(self.error(line, c, format!("G{m}: Q (peck depth) must be positive")));
+            }
+            self.cycle.q = Some(v * self.unit);
+        }
+        let (Some(r), Some(z)) = (self.cycle.r, self.cycle.z) else {
+            return Err(self.error(line, col, format!("G{m} needs R (retract level) and Z (bottom)")));
+        };
+        if z > r {
+            return Err(self.error(line, col, format!("G{m}: the bottom Z is above R")));
+        }
+        let q = match (m, self.cycle.q) {
+            (73 | 83, None) => return Err(self.error(line, col, format!("G{m} needs Q (peck depth)"))),
+            (73 | 83, Some(q)) if (r - z) / q > MAX_PECKS => {
+                return Err(self.error(line, col, format!("G{m}: more than {MAX_PECKS} pecks")))
+            }
+            (_, q) => q.unwrap_or(f64::INFINITY),
+        };
+        Ok((r, z, q))
     }
 
     /// A rapid (or feed) move to `xy` (or here) at height `z`; nothing if already there.

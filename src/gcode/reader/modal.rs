@@ -13,82 +13,67 @@ impl Reader {
     pub(super) fn modal_words(&mut self, line: u32, words: &[Word]) -> Result<LineCodes, ProgramError> {
         let mut codes = LineCodes::default();
         // Modal groups seen on this line, to refuse two words of one group.
-        let mut groups: [Option<u32>; 12] = [None; 12];
-        let mut group = |g: usize, col: u32, this: &Reader| -> Result<(), ProgramError> {
-            if groups[g].is_some() {
-                return Err(this.error(line, col, "two words of the same modal group on one line"));
-            }
-            groups[g] = Some(col);
-            Ok(())
-        };
+        let mut groups: [Option<u32>; 13] = [None; 13];
         for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
             // Codes with one decimal (G90.1); compare in tenths.
             let code = (w.value * 10.0).round() as i64;
             if ((w.value * 10.0) - code as f64).abs() > 1e-6 {
-                return Err(self.error(
-                    line,
-                    w.col,
-                    format!("unsupported {}{}", w.letter as char, w.value),
-                ));
+                let msg = format!("unsupported {}{}", w.letter as char, w.value);
+                return Err(self.error(line, w.col, msg));
             }
-            let col = w.col;
             if w.letter == b'M' {
-                self.m_code(line, code, col, &mut codes)?;
+                self.m_code(line, code, w.col, &mut codes)?;
                 continue;
             }
-            match code {
-                0 | 10 | 20 | 30 | 730 | 810 | 820 | 830 => {
-                    group(0, col, self)?;
-                    codes.motion = Some(((code / 10) as u8, col));
-                }
-                40 => {
-                    group(0, col, self)?;
-                    codes.dwell = Some(col);
-                }
-                170 | 180 | 190 => {
-                    group(1, col, self)?;
-                    self.plane = match code {
-                        170 => Plane::XY,
-                        180 => Plane::XZ,
-                        _ => Plane::YZ,
-                    };
-                }
-                200 | 210 => {
-                    group(2, col, self)?;
-                    self.unit = if code == 200 { 25.4e-3 } else { 1e-3 };
-                }
-                900 | 910 => {
-                    group(3, col, self)?;
-                    self.absolute = code == 900;
-                }
-                901 | 911 => {
-                    group(4, col, self)?;
-                    self.arc_absolute = code == 901;
-                }
-                610 | 611 => {
-                    group(5, col, self)?;
-                    self.path_mode = PathMode::ExactStop;
-                }
-                640 => {
-                    group(5, col, self)?;
-                    self.path_mode = self.blend_mode(line, words)?;
-                }
-                c if setup_group(c).is_some() => {
-                    group(setup_group(c).unwrap_or(0), col, self)?;
-                    self.setup_code(code, col, &mut codes);
-                }
-                // Accepted, no effect on motion: cancel cycles, feed per minute, spindle modes,
-                // canned-cycle return levels.
-                800 => self.motion = None,
-                980 | 990 => self.set_retract_to_r(code == 990),
-                940 | 960 | 970 => {}
-                _ => {
-                    let what = unsupported_reason(code);
-                    return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
+            if let Some(g) = g_group(code) {
+                if groups[g].replace(w.col).is_some() {
+                    return Err(self.error(line, w.col, "two words of the same modal group on one line"));
                 }
             }
+            self.g_code(line, code, w.col, words, &mut codes)?;
         }
         Ok(codes)
+    }
+
+    /// One G code: a modal setting applied at once, or noted in `codes` for `execute`.
+    fn g_code(
+        &mut self,
+        line: u32,
+        code: i64,
+        col: u32,
+        words: &[Word],
+        codes: &mut LineCodes,
+    ) -> Result<(), ProgramError> {
+        match code {
+            0 | 10 | 20 | 30 | 730 | 810 | 820 | 830 => codes.motion = Some(((code / 10) as u8, col)),
+            40 => codes.dwell = Some(col),
+            170 => self.plane = Plane::XY,
+            180 => self.plane = Plane::XZ,
+            190 => self.plane = Plane::YZ,
+            200 | 210 => self.unit = if code == 200 { 25.4e-3 } else { 1e-3 },
+            900 | 910 => self.absolute = code == 900,
+            901 | 911 => self.arc_absolute = code == 901,
+            610 | 611 => self.path_mode = PathMode::ExactStop,
+            640 => self.path_mode = self.blend_mode(line, words)?,
+            930 | 940 => {
+                // A change of feed mode needs a new F (LinuxCNC "G93, G94, G95").
+                if self.inverse_time != (code == 930) {
+                    self.feed = 0.0;
+                }
+                self.inverse_time = code == 930;
+            }
+            c if setup_group(c).is_some() => self.setup_code(code, col, codes),
+            // Accepted, no effect on motion: cancel cycles, spindle modes, canned-cycle return
+            // levels.
+            800 => self.motion = None,
+            980 | 990 => self.set_retract_to_r(code == 990),
+            960 | 970 => {}
+            _ => {
+                let what = unsupported_reason(code);
+                return Err(self.error(line, col, format!("unsupported G{}{what}", fmt_code(code))));
+            }
+        }
+        Ok(())
     }
 
     /// G64 [P tolerance] [Q merge tolerance] (LinuxCNC "G64").
@@ -144,6 +129,20 @@ impl Reader {
     }
 }
 
+/// The modal group (index into the line's groups) of a G code, None for codes without one.
+fn g_group(code: i64) -> Option<usize> {
+    match code {
+        0 | 10 | 20 | 30 | 730 | 810 | 820 | 830 | 40 => Some(0),
+        170 | 180 | 190 => Some(1),
+        200 | 210 => Some(2),
+        900 | 910 => Some(3),
+        901 | 911 => Some(4),
+        610 | 611 | 640 => Some(5),
+        930 | 940 => Some(12),
+        c => setup_group(c),
+    }
+}
+
 /// The modal group (index into the line's groups) of a setup code, None for the others.
 fn setup_group(code: i64) -> Option<usize> {
     match code {
@@ -164,7 +163,6 @@ fn unsupported_reason(code: i64) -> &'static str {
         50..=53 => " (splines)",
         380..=389 => " (probing)",
         840..=890 => " (canned cycles other than G73, G81, G82, G83)",
-        930 => " (inverse-time feed)",
         950 => " (feed per revolution)",
         70 | 80 => " (lathe diameter/radius mode: this controller drives a 3-axis mill)",
         _ => "",

@@ -16,6 +16,8 @@ pub(super) struct LineWords {
     pub r: Located,
     pub p: Located,
     pub extra: Extra,
+    /// F in G93 (per minute), applied to the line's move.
+    pub f: Located,
 }
 
 impl Reader {
@@ -28,6 +30,7 @@ impl Reader {
             r,
             p,
             extra,
+            f,
         } = &mut out;
         for w in words {
             let v = w.value;
@@ -49,6 +52,11 @@ impl Reader {
                     }
                 }
                 b'P' => *p = Some((v, w.col)),
+                b'F' if self.inverse_time => {
+                    // G93: moves per minute (the move takes 1/F minutes).
+                    check::inverse_feed(v).map_err(located)?;
+                    *f = Some((v, w.col));
+                }
                 b'F' => {
                     // G94: units per minute.
                     self.feed = check::feed(v, self.unit).map_err(located)?;

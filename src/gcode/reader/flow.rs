@@ -1,0 +1,536 @@
+//! O-word control flow (LinuxCNC G-code reference, "O Codes"): subroutines with arguments and
+//! local parameters, `if/elseif/else/endif`, `while/endwhile`, `do/while`, `repeat/endrepeat`,
+//! `break`, `continue`, `return`. Memory stays bounded: the reader keeps the places (byte
+//! offset, line) of the subroutines and of the open constructs, and moves its cursor there —
+//! a loop re-reads its body from the program, a call jumps to the body of the subroutine; a
+//! branch not taken is skipped by scanning forward for the matching O-word. Every jump back
+//! counts against the machine's `max_loop_iterations`; calls nest at most MAX_CALL_DEPTH deep.
+
+use super::Reader;
+use crate::error::ProgramError;
+use crate::gcode::oword::{self, Head, Keyword};
+use crate::gcode::params::Locals;
+use crate::gcode::source::LineError;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Deepest nesting of subroutine calls, recursion included (LinuxCNC "O Codes",
+/// "Subroutines": "The maximum subroutine nesting level is 10").
+pub const MAX_CALL_DEPTH: usize = 10;
+/// Most constructs open at once (over all call levels).
+pub const MAX_OPEN: usize = 1024;
+/// Most subroutines a program defines.
+pub const MAX_SUBS: usize = 10_000;
+
+/// A line of the program: its byte offset and number.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Place {
+    pub offset: usize,
+    pub line: u32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+enum Kind {
+    If,
+    While,
+    Do,
+    Repeat,
+}
+
+/// An open construct: where it started (the `while` line, the line after `do`/`repeat`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct Open {
+    label: String,
+    kind: Kind,
+    at: Place,
+    /// Passes of a `repeat` still to run.
+    left: u64,
+}
+
+/// A subroutine call: where to go back, the caller's locals, the open constructs below it.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct Frame {
+    label: String,
+    back: Place,
+    locals: Locals,
+    open: usize,
+}
+
+/// The control-flow state of the reader.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Flow {
+    /// Subroutines seen: label → the line after `sub`.
+    subs: BTreeMap<String, Place>,
+    open: Vec<Open>,
+    calls: Vec<Frame>,
+    /// Jumps back (loop passes) so far.
+    iterations: u64,
+}
+
+impl Flow {
+    /// The constructs open in the current call level.
+    fn level(&self) -> &[Open] {
+        &self.open[self.calls.last().map_or(0, |f| f.open)..]
+    }
+
+    fn top_is(&self, label: &str, kind: Kind) -> bool {
+        self.level()
+            .last()
+            .is_some_and(|o| o.label == label && o.kind == kind)
+    }
+
+    fn name(kind: Kind) -> &'static str {
+        match kind {
+            Kind::If => "if",
+            Kind::While => "while",
+            Kind::Do => "do",
+            Kind::Repeat => "repeat",
+        }
+    }
+}
+
+/// An O-word line found by a scan: its place, the line after it, its head and text.
+struct Found {
+    here: Place,
+    next: Place,
+    head: Head,
+    text: String,
+}
+
+impl Reader {
+    /// Execute the O-word line at `here` (`next` is the line after it); may set `self.jump`.
+    pub(super) fn o_word(
+        &mut self,
+        here: Place,
+        next: Place,
+        text: &str,
+        head: Head,
+    ) -> Result<(), ProgramError> {
+        let line = here.line;
+        match head.keyword {
+            Keyword::Sub => self.define_sub(here, next, &head),
+            Keyword::EndSub | Keyword::Return => {
+                let value = self.arguments(line, text, &head, 0, 1)?;
+                self.return_from(line, &head, value.first().copied())
+            }
+            Keyword::Call => {
+                let args = self.arguments(line, text, &head, 0, oword::MAX_ARGS)?;
+                self.call(line, next, &head, &args)
+            }
+            Keyword::If => {
+                let c = self.arguments(line, text, &head, 1, 1)?[0];
+                self.push(line, &head, Kind::If, here, 0)?;
+                if c == 0.0 {
+                    self.next_branch(line, next, &head)?;
+                }
+                Ok(())
+            }
+            Keyword::ElseIf | Keyword::Else => {
+                // The branch before it ran: go past the endif.
+                self.expect_top(line, &head, Kind::If)?;
+                let end = self.find(line, next, &head, &[Keyword::EndIf], "endif")?;
+                self.flow.open.pop();
+                self.jump = Some(end.next);
+                Ok(())
+            }
+            Keyword::EndIf => {
+                self.expect_top(line, &head, Kind::If)?;
+                self.flow.open.pop();
+                Ok(())
+            }
+            Keyword::While => self.while_line(here, next, text, &head),
+            Keyword::EndWhile => {
+                self.expect_top(line, &head, Kind::While)?;
+                let at = self.flow.open.last().map_or(here, |o| o.at);
+                self.iterate(line)?;
+                self.jump = Some(at);
+                Ok(())
+            }
+            Keyword::Do => {
+                self.arguments(line, text, &head, 0, 0)?;
+                self.push(line, &head, Kind::Do, next, 0)
+            }
+            Keyword::Repeat => self.repeat(line, next, text, &head),
+            Keyword::EndRepeat => {
+                self.expect_top(line, &head, Kind::Repeat)?;
+                let Some(top) = self.flow.open.last_mut() else {
+                    return Ok(());
+                };
+                top.left = top.left.saturating_sub(1);
+                if top.left == 0 {
+                    self.flow.open.pop();
+                    return Ok(());
+                }
+                let at = top.at;
+                self.iterate(line)?;
+                self.jump = Some(at);
+                Ok(())
+            }
+            Keyword::Break | Keyword::Continue => self.leave_pass(line, next, &head),
+            // A program number heads a program; later it would start an M98/M99 subprogram.
+            Keyword::Number if self.motion.is_none() => Ok(()),
+            Keyword::Number => {
+                let l = head.shown();
+                let msg =
+                    format!("unsupported Fanuc-style subprogram {l} (… M99); write {l} sub … {l} endsub");
+                Err(self.error(line, head.col, msg))
+            }
+        }
+    }
+
+    /// The bracketed arguments of an executed O-word line, between `min` and `max` of them.
+    fn arguments(
+        &self,
+        line: u32,
+        text: &str,
+        head: &Head,
+        min: usize,
+        max: usize,
+    ) -> Result<Vec<f64>, ProgramError> {
+        let args =
+            oword::args(text, head, &self.params).map_err(|(c, m)| self.error(line, c as u32 + 1, m))?;
+        if args.len() < min || args.len() > max {
+            let what = match (min, max) {
+                (0, 0) => "takes no [expression]".to_string(),
+                (1, 1) => "needs one [expression]".to_string(),
+                _ => format!("takes {min} to {max} [expressions]"),
+            };
+            let msg = format!("{} {} {what}", head.shown(), head.keyword.name());
+            return Err(self.error(line, head.col, msg));
+        }
+        Ok(args)
+    }
+
+    fn push(&mut self, line: u32, head: &Head, kind: Kind, at: Place, left: u64) -> Result<(), ProgramError> {
+        if self.flow.open.len() >= MAX_OPEN {
+            return Err(self.error(
+                line,
+                head.col,
+                format!("more than {MAX_OPEN} O-word constructs open"),
+            ));
+        }
+        self.flow.open.push(Open {
+            label: head.label.clone(),
+            kind,
+            at,
+            left,
+        });
+        Ok(())
+    }
+
+    fn expect_top(&self, line: u32, head: &Head, kind: Kind) -> Result<(), ProgramError> {
+        if self.flow.top_is(&head.label, kind) {
+            return Ok(());
+        }
+        let l = head.shown();
+        let kw = head.keyword.name();
+        let open = match self.flow.level().last() {
+            Some(o) => format!(
+                " (open: {} {} of line {})",
+                oword::shown(&o.label),
+                Flow::name(o.kind),
+                o.at.line
+            ),
+            None => String::new(),
+        };
+        let msg = format!("{l} {kw} without a matching {l} {}{open}", Flow::name(kind));
+        Err(self.error(line, head.col, msg))
+    }
+
+    /// Count one jump back against the machine's limit.
+    fn iterate(&mut self, line: u32) -> Result<(), ProgramError> {
+        self.flow.iterations += 1;
+        let limit = self.nc.max_loop_iterations;
+        if self.flow.iterations > limit {
+            let msg = format!("more than {limit} loop iterations (machine key max_loop_iterations)");
+            return Err(self.error(line, 1, msg));
+        }
+        Ok(())
+    }
+
+    /// `oN sub`: remember the body, skip to after `oN endsub`.
+    fn define_sub(&mut self, here: Place, next: Place, head: &Head) -> Result<(), ProgramError> {
+        match self.flow.subs.get(&head.label) {
+            Some(p) if p.line != next.line => {
+                let msg = format!(
+                    "{} sub defined twice (first at line {})",
+                    head.shown(),
+                    p.line - 1
+                );
+                return Err(self.error(here.line, head.col, msg));
+            }
+            Some(_) => {}
+            None if self.flow.subs.len() >= MAX_SUBS => {
+                let msg = format!("more than {MAX_SUBS} subroutines");
+                return Err(self.error(here.line, head.col, msg));
+            }
+            None => {
+                self.flow.subs.insert(head.label.clone(), next);
+            }
+        }
+        let end = self.find(here.line, next, head, &[Keyword::EndSub], "endsub")?;
+        self.jump = Some(end.next);
+        Ok(())
+    }
+
+    /// `oN call [args]`: save the caller's locals, set #1 … from the arguments, run the body.
+    fn call(&mut self, line: u32, next: Place, head: &Head, args: &[f64]) -> Result<(), ProgramError> {
+        if self.flow.calls.len() >= MAX_CALL_DEPTH {
+            let msg = format!("{} call: calls nested deeper than {MAX_CALL_DEPTH}", head.shown());
+            return Err(self.error(line, head.col, msg));
+        }
+        let body = match self.flow.subs.get(&head.label) {
+            Some(p) => *p,
+            None => self.find_sub(line, head)?,
+        };
+        let locals = self.params.enter_call(args);
+        self.flow.calls.push(Frame {
+            label: head.label.clone(),
+            back: next,
+            locals,
+            open: self.flow.open.len(),
+        });
+        self.jump = Some(body);
+        Ok(())
+    }
+
+    /// A subroutine not yet met: scan the whole program for its `sub` line.
+    fn find_sub(&mut self, line: u32, head: &Head) -> Result<Place, ProgramError> {
+        let start = Place { offset: 0, line: 1 };
+        let Some(found) = self.scan(start, &head.label, &[Keyword::Sub])? else {
+            let msg = format!("{} call: the program has no {} sub", head.shown(), head.shown());
+            return Err(self.error(line, head.col, msg));
+        };
+        if self.flow.subs.len() >= MAX_SUBS {
+            return Err(self.error(line, head.col, format!("more than {MAX_SUBS} subroutines")));
+        }
+        self.flow.subs.insert(head.label.clone(), found.next);
+        Ok(found.next)
+    }
+
+    /// `oN endsub [value]` / `oN return [value]`: back to the caller, `#<_value>` set.
+    fn return_from(&mut self, line: u32, head: &Head, value: Option<f64>) -> Result<(), ProgramError> {
+        let kw = if head.keyword == Keyword::Return {
+            "return"
+        } else {
+            "endsub"
+        };
+        let frame = match self.flow.calls.last() {
+            Some(f) if f.label == head.label => self.flow.calls.pop(),
+            Some(f) => {
+                let msg = format!(
+                    "{} {kw} inside a call of {}",
+                    head.shown(),
+                    oword::shown(&f.label)
+                );
+                return Err(self.error(line, head.col, msg));
+            }
+            None => {
+                let msg = format!(
+                    "{} {kw} outside a call of {} (no {} call is running)",
+                    head.shown(),
+                    head.shown(),
+                    head.shown()
+                );
+                return Err(self.error(line, head.col, msg));
+            }
+        };
+        let Some(frame) = frame else { return Ok(()) };
+        self.params.leave_call(frame.locals);
+        self.flow.open.truncate(frame.open);
+        if let Some(v) = value {
+            self.params.set_named("_value", v);
+            self.params.set_named("_value_returned", 1.0);
+        }
+        self.jump = Some(frame.back);
+        Ok(())
+    }
+
+    /// A false `if`/`elseif`: on to the next branch whose condition holds, the `else`, or past
+    /// the `endif`.
+    fn next_branch(&mut self, line: u32, from: Place, head: &Head) -> Result<(), ProgramError> {
+        let mut from = from;
+        loop {
+            let keys = [Keyword::ElseIf, Keyword::Else, Keyword::EndIf];
+            let found = self.find(line, from, head, &keys, "endif")?;
+            let here = found.here.line;
+            match found.head.keyword {
+                Keyword::ElseIf => {
+                    let c = self.arguments(here, &found.text, &found.head, 1, 1)?[0];
+                    if c != 0.0 {
+                        self.jump = Some(found.next);
+                        return Ok(());
+                    }
+                    from = found.next;
+                }
+                Keyword::Else => {
+                    self.jump = Some(found.next);
+                    return Ok(());
+                }
+                _ => {
+                    self.flow.open.pop();
+                    self.jump = Some(found.next);
+                    return Ok(());
+                }
+            }
+        }
+    }
+
+    /// `oN while [c]`: the end of a `do` loop, or the head of a `while` loop.
+    fn while_line(&mut self, here: Place, next: Place, text: &str, head: &Head) -> Result<(), ProgramError> {
+        let line = here.line;
+        let c = self.arguments(line, text, head, 1, 1)?[0];
+        if self.flow.top_is(&head.label, Kind::Do) {
+            if c != 0.0 {
+                let at = self.flow.open.last().map_or(next, |o| o.at);
+                self.iterate(line)?;
+                self.jump = Some(at);
+            } else {
+                self.flow.open.pop();
+            }
+            return Ok(());
+        }
+        // Back from its endwhile the loop is already open.
+        if !self.flow.top_is(&head.label, Kind::While) {
+            self.push(line, head, Kind::While, here, 0)?;
+        }
+        if c == 0.0 {
+            let end = self.find(line, next, head, &[Keyword::EndWhile], "endwhile")?;
+            self.flow.open.pop();
+            self.jump = Some(end.next);
+        }
+        Ok(())
+    }
+
+    /// `oN repeat [count]`: run the body count times (0: skip it).
+    fn repeat(&mut self, line: u32, next: Place, text: &str, head: &Head) -> Result<(), ProgramError> {
+        let n = self.arguments(line, text, head, 1, 1)?[0];
+        let limit = self.nc.max_loop_iterations;
+        if n < 0.0 || n.fract() != 0.0 || n > limit as f64 {
+            let msg = format!(
+                "{} repeat [{n}]: count out of range (a whole number 0 … {limit}, machine key max_loop_iterations)",
+                head.shown()
+            );
+            return Err(self.error(line, head.col, msg));
+        }
+        if n == 0.0 {
+            let end = self.find(line, next, head, &[Keyword::EndRepeat], "endrepeat")?;
+            self.jump = Some(end.next);
+            return Ok(());
+        }
+        self.push(line, head, Kind::Repeat, next, n as u64)
+    }
+
+    /// `oN break` (past the end of loop oN) / `oN continue` (to its end line, which loops).
+    fn leave_pass(&mut self, line: u32, next: Place, head: &Head) -> Result<(), ProgramError> {
+        let kw = if head.keyword == Keyword::Break {
+            "break"
+        } else {
+            "continue"
+        };
+        let level = self.flow.level();
+        let Some(k) = level
+            .iter()
+            .rposition(|o| o.label == head.label && o.kind != Kind::If)
+        else {
+            let msg = format!(
+                "{} {kw} outside a loop {} (while, do, repeat)",
+                head.shown(),
+                head.shown()
+            );
+            return Err(self.error(line, head.col, msg));
+        };
+        let kind = level[k].kind;
+        let cut = self.flow.open.len() - (level.len() - k);
+        let (end, name) = match kind {
+            Kind::While => (Keyword::EndWhile, "endwhile"),
+            Kind::Do => (Keyword::While, "while"),
+            _ => (Keyword::EndRepeat, "endrepeat"),
+        };
+        let found = self.find(line, next, head, &[end], name)?;
+        if head.keyword == Keyword::Break {
+            self.flow.open.truncate(cut);
+            self.jump = Some(found.next);
+        } else {
+            self.flow.open.truncate(cut + 1);
+            self.jump = Some(found.here);
+        }
+        Ok(())
+    }
+
+    /// `scan`, with a located error naming the missing end when there is none.
+    fn find(
+        &mut self,
+        line: u32,
+        from: Place,
+        head: &Head,
+        keys: &[Keyword],
+        end: &str,
+    ) -> Result<Found, ProgramError> {
+        match self.scan(from, &head.label, keys)? {
+            Some(f) => Ok(f),
+            None => {
+                let kw = head.keyword.name();
+                let msg = format!("{l} {kw} without {l} {end}", l = head.shown());
+                Err(self.error(line, head.col, msg))
+            }
+        }
+    }
+
+    /// Read forward from `from`, without executing, to the O-word line `label` with one of
+    /// `keys`; None at the end of the program.
+    fn scan(&mut self, from: Place, label: &str, keys: &[Keyword]) -> Result<Option<Found>, ProgramError> {
+        let mut at = from;
+        let mut buf = Vec::new();
+        loop {
+            self.lines.read_line(at.offset, &mut buf).map_err(|e| match e {
+                LineError::Io(e) => self.error(at.line, 1, format!("cannot read the program: {e}")),
+                LineError::TooLong => self.error(at.line, 1, "line out of range (longer than 64 KiB)"),
+            })?;
+            if buf.is_empty() {
+                return Ok(None);
+            }
+            let next = Place {
+                offset: at.offset + buf.len(),
+                line: at.line.saturating_add(1),
+            };
+            let text = String::from_utf8_lossy(&buf);
+            let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+            // Block delete: the line is skipped (switch on) or read without its '/'.
+            let slash = text.trim_start().strip_prefix('/');
+            let deleted = self.nc.block_delete && slash.is_some();
+            let shift = slash.map_or(0, |rest| text.len() - rest.len());
+            let text = slash.unwrap_or(text);
+            if let Some(h) = oword::head(text, None).filter(|_| !deleted) {
+                let h = h.map_err(|(c, m)| self.error(at.line, (shift + c) as u32 + 1, m))?;
+                if h.label == label && keys.contains(&h.keyword) {
+                    let text = text.to_string();
+                    return Ok(Some(Found {
+                        here: at,
+                        next,
+                        head: h,
+                        text,
+                    }));
+                }
+            }
+            at = next;
+        }
+    }
+
+    /// At the end of the program: no construct may be left open.
+    pub(super) fn check_flow_closed(&self) -> Result<(), ProgramError> {
+        if let Some(o) = self.flow.open.last() {
+            let l = oword::shown(&o.label);
+            let line = match o.kind {
+                Kind::If | Kind::While => o.at.line,
+                Kind::Do | Kind::Repeat => o.at.line.saturating_sub(1),
+            };
+            let msg = format!(
+                "{l} {} is not closed before the end of the program",
+                Flow::name(o.kind)
+            );
+            return Err(self.error(line.max(1), 1, msg));
+        }
+        Ok(())
+    }
+}
