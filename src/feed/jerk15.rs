@@ -6,6 +6,7 @@
 //! distances s_cr1..s_cr4 fall out of choosing the peak acceleration below.
 
 use super::compose::{self, RampLaw, Shape, TwoRamps};
+use super::roots::fit_down;
 use super::{scurve7, BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
@@ -157,6 +158,13 @@ pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
     compose::max_speed(&Law::new(lim), length, v_out)
+}
+
+/// Largest exit x ≤ `target` whose ramp from v_in fits in `length`, when a stop does (else 0).
+pub fn lowest_exit(length: f64, v_in: f64, target: f64, lim: &Limits) -> f64 {
+    let x = compose::lowest_exit(&Law::new(lim), length, v_in, target);
+    // Exact against `ramp_distance` too (the ramp record rounds a little differently).
+    fit_down(x, 0.0, length, |x| ramp_distance(v_in, x, lim)).0
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {

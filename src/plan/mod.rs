@@ -9,8 +9,8 @@
 //!   of "slow to the next limit" and "stop at the block end" (D is unimodal in the exit speed on
 //!   [0, v], so the best exit below the limit is one of the two interval ends).
 //! - Forward pass: from the actual entry speed, the exit is the next limit if reachable, the best
-//!   reachable speed otherwise (accelerating: `max_exit`; slowing: the largest exit on the rising
-//!   branch of D, found by a fixed number of bisection steps — only when a stop was planned).
+//!   reachable speed otherwise (accelerating: `max_exit`; slowing: `lowest_exit`, the largest exit
+//!   on the rising branch of D, in closed form where the law has one — only when a stop was planned).
 //!
 //! Work is per block: the window is refilled, swept backwards until the limits stop changing, and
 //! its first half emitted, so each block costs O(1) profile solves amortised.
@@ -63,9 +63,6 @@ pub struct Planner {
 
 /// Segments released per backward pass when the window is full.
 const EMIT_BATCH: usize = 16;
-
-/// Iterations of the bounded bisection (interval shrinks by 2⁻⁶⁰, below f64 resolution).
-const BISECTION_STEPS: usize = 60;
 
 impl Planner {
     pub fn new(kind: ProfileKind, lookahead_blocks: usize) -> Planner {
@@ -253,10 +250,8 @@ impl Planner {
             v_in
         } else if target >= v_in {
             target.min(feed::max_exit(self.kind, length, v_in, &lim))
-        } else if feed::ramp_distance(self.kind, v_in, target, &lim) <= length {
-            target
         } else {
-            self.best_slow_exit(v_in, target, length, &lim)
+            feed::lowest_exit(self.kind, length, v_in, target, &lim)
         };
         let v_feed = if e.block.constant_speed {
             v_in
@@ -279,25 +274,6 @@ impl Planner {
             v_out,
             profile,
         });
-    }
-
-    /// Largest exit x ≤ `target` with D(v_in, x) ≤ length, when D(v_in, target) > length: D rises
-    /// from x = 0 to a peak then falls, and D(v_in, 0) ≤ length (the backward pass planned a stop),
-    /// so the answer is the crossing on the rising branch.
-    fn best_slow_exit(&self, v_in: f64, target: f64, length: f64, lim: &feed::Limits) -> f64 {
-        let (mut lo, mut hi) = (0.0, target);
-        if feed::ramp_distance(self.kind, v_in, 0.0, lim) > length {
-            return 0.0;
-        }
-        for _ in 0..BISECTION_STEPS {
-            let mid = 0.5 * (lo + hi);
-            if feed::ramp_distance(self.kind, v_in, mid, lim) <= length {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        lo
     }
 }
 
