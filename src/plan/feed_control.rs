@@ -198,13 +198,13 @@ impl FeedControl {
                 settled: true,
             },
         };
-        // The path after the change, as it will be planned: the rest of the block, the queue
-        // (without the block taken as the rest), the look-ahead window.
         // A ramp to the block's end meets the junction there.
         let junction = match (&change.head, &change.rest) {
             (Some(ramp), None) => ramp.block.v_end_max,
             _ => f64::INFINITY,
         };
+        // The path after the change, as it will be planned: the rest of the block, the queue
+        // (without the block taken as the rest), the look-ahead window.
         let room = {
             let queued = queue.iter().skip(usize::from(!cut)).map(|p| &p.block);
             let after = change.rest.iter().chain(queued).chain(planner.window());
