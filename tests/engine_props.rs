@@ -431,7 +431,7 @@ fn run_with_changes(program: &str, machine: &Machine, changes: &[(usize, FeedCha
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
     /// Overrides and holds at random ticks, mid-block or not, on line programs (feeds per block)
     /// and line-and-arc programs: every axis within its limits (from the ticks by finite
