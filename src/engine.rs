@@ -3,20 +3,20 @@
 
 use crate::config::Machine;
 use crate::error::ProgramError;
-use crate::feed::{self, BlockRequest, FeedLaw, Profile};
 use crate::gcode::{Motion, ProgramSource, Reader};
 use crate::interp::{Interpolator, Tick};
-use crate::path::Segment;
 use crate::path::{PathBlock, PathBuilder};
-use crate::plan::{Planned, Planner};
+use crate::plan::{FeedControl, Planned, Planner, Replan};
 use crate::servo::{AxisCommand, AxisState, ServoAxis};
-use crate::tolerance::{PERIOD_SLACK, SPEED_MARGIN};
+use crate::tolerance::PERIOD_SLACK;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
-const STATE_VERSION: u32 = 4; // 3: reader NC state (tools, offsets, compensation, parameters); 4: O-word flow, G93, inch setup
+// 3: reader NC state (tools, offsets, compensation, parameters); 4: O-word flow, G93, inch setup;
+// 5: override and hold in the plan stage.
+const STATE_VERSION: u32 = 5;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
@@ -39,17 +39,11 @@ pub struct Engine {
     /// Number of interpolation ticks done (tick n is at n·T).
     ticks: u64,
     time: f64,
-    /// An override or hold change waits for a point where the path acceleration is zero.
-    replan_pending: bool,
-    /// The hold has been planned: the path stops at the end of the queued deceleration.
-    hold_applied: bool,
-    /// The rest of the path during a hold, planned again from rest at the release.
-    held: Vec<PathBlock>,
+    /// Feed override and hold (plan stage).
+    control: FeedControl,
     /// The three drives when the servo model is on, and the time they have reached.
     drives: Option<Vec<ServoAxis>>,
     servo_time: f64,
-    feed_override: f64,
-    feed_hold: bool,
     load_force: Vec3,
     motion_blocks: u64,
     /// Time of the tick at which all motion was done (s).
@@ -83,13 +77,9 @@ impl Engine {
             tick,
             ticks: 0,
             time: 0.0,
-            replan_pending: false,
-            hold_applied: false,
-            held: Vec::new(),
+            control: FeedControl::new(machine),
             drives: None,
             servo_time: 0.0,
-            feed_override: 1.0,
-            feed_hold: false,
             load_force: [0.0; 3],
             motion_blocks: 0,
             finish_time: None,
@@ -181,60 +171,17 @@ impl Engine {
     /// acceleration is zero (a cruise phase or a block end) with the feeds scaled: a speed change
     /// by the feed law itself, so jerk-limited and within every limit. 0 acts as a feed hold.
     pub fn set_feed_override(&mut self, k: f64) {
-        let k = if k.is_finite() { k.clamp(0.0, 2.0) } else { 1.0 };
-        if k != self.feed_override {
-            let was_holding = self.holding();
-            self.feed_override = k;
-            if was_holding && !self.holding() {
-                self.release();
-            }
-            self.replan_pending = true;
-        }
+        let current = self.interp.current().map(|(p, _)| p);
+        self.control
+            .set_override(k, current, &mut self.queue, &mut self.planner);
     }
 
     /// Feed hold: decelerate to standstill on the path within the limits (planned from the next
     /// point of zero acceleration); release resumes from there.
     pub fn set_feed_hold(&mut self, hold: bool) {
-        if hold != self.feed_hold {
-            self.feed_hold = hold;
-            if hold {
-                self.replan_pending = true;
-            } else {
-                self.release();
-            }
-        }
-    }
-
-    /// End of a hold: the rest of the path is planned again from where the path stopped.
-    fn release(&mut self) {
-        if self.holding() {
-            return;
-        }
-        self.replan_pending = false;
-        if !self.hold_applied {
-            return;
-        }
-        self.hold_applied = false;
-        // Still slowing down when released: the ramp in the queue finishes first, and the rest of
-        // the path enters at the speed it ends with (or the speed now, if nothing is queued).
-        let v_now = if self.interp.idle() {
-            0.0
-        } else {
-            self.interp.kin().v
-        };
-        let v_entry = self.queue.back().map_or(v_now, |p| p.v_out);
-        let mut blocks: Vec<PathBlock> = std::mem::take(&mut self.held);
-        blocks.extend(self.planner.restart(v_entry));
-        self.planner.set_feed_scale(self.feed_override.max(1e-3));
-        let mut out = std::mem::take(&mut self.queue);
-        for b in blocks {
-            self.planner.push(b, &mut out);
-        }
-        self.queue = out;
-    }
-
-    fn holding(&self) -> bool {
-        self.feed_hold || self.feed_override == 0.0
+        let current = self.interp.current().map(|(p, _)| p);
+        self.control
+            .set_hold(hold, current, &mut self.queue, &mut self.planner);
     }
 
     /// External force on each axis' table from a structure model (N).
@@ -298,12 +245,17 @@ impl Engine {
     /// One interpolation tick at time `t`.
     fn interpolate(&mut self, t: f64) -> Result<(), ProgramError> {
         let period = self.machine.interpolation_period;
-        if self.replan_pending {
-            self.replan()?;
+        if self.control.pending() {
+            let here = self.interp.here();
+            let replan = self.control.replan(here, &mut self.queue, &mut self.planner);
+            if replan == (Replan::Done { cut: true }) {
+                self.interp.end_here();
+            }
         }
         // Keep a few planned segments ahead, reading at most a few blocks per tick, so that no
         // single tick pays for a whole look-ahead window.
-        if !self.hold_applied {
+        let hold_applied = self.control.hold_applied();
+        if !hold_applied {
             for _ in 0..READ_AHEAD_PER_TICK {
                 if self.queue.len() >= QUEUE_TARGET || !self.pull()? {
                     break;
@@ -312,136 +264,24 @@ impl Engine {
         }
         let mut dt = period;
         loop {
-            let fence = self.hold_applied && self.queue.is_empty();
-            dt = self.interp.advance_fenced(dt, &mut self.queue, fence);
-            if dt <= 0.0 || self.hold_applied || !self.refill()? {
+            dt = self.interp.advance(dt, &mut self.queue);
+            if dt <= 0.0 || hold_applied || !self.refill()? {
                 break;
             }
         }
-        if self.interp.idle() && self.queue.is_empty() && !self.hold_applied {
+        if self.interp.idle() && self.queue.is_empty() && !hold_applied {
             self.refill()?;
         }
         let finished = self.interp.idle()
             && self.queue.is_empty()
             && self.program_done
             && self.planner.pending() == 0
-            && self.held.is_empty();
+            && self.control.held() == 0;
         let tick = self.interp.sample(t, finished);
         if finished && self.finish_time.is_none() {
             self.finish_time = Some(t);
         }
         self.tick = tick;
-        Ok(())
-    }
-
-    /// Re-plan from the current point for a new override or a hold, if the path acceleration is
-    /// zero here (else wait for the next tick). What is left of the current block is cut off; if
-    /// the speed must come down, a ramp of the feed law brings it down over the shortest distance
-    /// (the rest of the block, if that is too short, and the next block continues it); then the
-    /// rest of the path goes through a fresh look-ahead at the new feed scale.
-    fn replan(&mut self) -> Result<(), ProgramError> {
-        let a_tol = 1e-9
-            * self
-                .machine
-                .axes
-                .iter()
-                .map(|x| x.max_acceleration)
-                .fold(0.0, f64::max);
-        let kind = self.machine.profile;
-        let mut head: VecDeque<Planned> = VecDeque::new();
-        let (rest, v_cur) = match self.interp.cut(a_tol) {
-            Some((rest, v)) => (Some(rest), v),
-            None if self.interp.idle() => match self.queue.front() {
-                Some(p) if p.block.constant_speed => return Ok(()),
-                Some(p) => (None, p.v_in),
-                None => (None, 0.0),
-            },
-            None => return Ok(()),
-        };
-        let hold = self.holding();
-        let scale = if hold {
-            self.planner.feed_scale()
-        } else {
-            self.feed_override
-        };
-        let mut blocks: Vec<PathBlock> = Vec::new();
-        let mut v_start = v_cur;
-        let mut settled = true;
-        let mut pending_rest = rest;
-        if pending_rest.is_none() && !self.queue.is_empty() {
-            // At a block boundary: the next queued block plays the part of the rest.
-            pending_rest = self.queue.pop_front().map(|p| p.block);
-        }
-        if let Some(rest) = pending_rest {
-            let target = if hold {
-                0.0
-            } else {
-                (rest.v_feed * scale).min(rest.limits.v_max)
-            };
-            let length = rest.segment.length();
-            if v_cur > target * (1.0 + SPEED_MARGIN) && !matches!(rest.segment, Segment::Dwell { .. }) {
-                let d = feed::ramp_distance(kind, v_cur, target, &rest.limits);
-                let request = |length: f64| BlockRequest {
-                    length,
-                    v_in: v_cur,
-                    v_out: target,
-                    v_feed: v_cur,
-                    limits: rest.limits,
-                };
-                if d < length {
-                    // Slow down over d, then the rest of the block at the new feed.
-                    if let (Some(a), Some(b)) = (rest.segment.part(0.0, d), rest.segment.part(d, length - d))
-                    {
-                        let profile = Profile::plan(kind, &request(d));
-                        let block = PathBlock {
-                            segment: a,
-                            v_end_max: target,
-                            ..rest
-                        };
-                        head.push_back(Planned {
-                            block,
-                            v_in: v_cur,
-                            v_out: target,
-                            profile,
-                        });
-                        blocks.push(PathBlock { segment: b, ..rest });
-                        v_start = target;
-                    } else {
-                        blocks.push(rest);
-                    }
-                } else {
-                    // The whole rest of the block slows down as hard as the law allows.
-                    let profile = Profile::plan(kind, &request(length));
-                    v_start = profile.v_end();
-                    head.push_back(Planned {
-                        block: rest,
-                        v_in: v_cur,
-                        v_out: v_start,
-                        profile,
-                    });
-                    settled = v_start <= target * (1.0 + SPEED_MARGIN);
-                }
-            } else {
-                blocks.push(rest);
-            }
-        }
-        blocks.extend(self.queue.drain(..).map(|p| p.block));
-        blocks.extend(self.planner.restart(v_start));
-        self.replan_pending = !settled;
-        if hold && settled {
-            // Only the deceleration runs; the rest of the path waits for the release.
-            self.hold_applied = true;
-            self.held.extend(blocks);
-            self.queue = head;
-            return Ok(());
-        }
-        if !hold {
-            self.planner.set_feed_scale(scale);
-        }
-        for b in blocks {
-            self.planner.push(b, &mut head);
-        }
-        self.queue = head;
         Ok(())
     }
 

@@ -373,3 +373,94 @@ proptest! {
         check_limits(&r, &machine, true);
     }
 }
+
+/// A change of the feed at a tick: an override factor, or the feed hold on or off.
+#[derive(Clone, Copy, Debug)]
+enum FeedChange {
+    Override(f64),
+    Hold(bool),
+}
+
+fn a_feed_change() -> impl Strategy<Value = (usize, FeedChange)> {
+    (
+        0..3000usize,
+        prop_oneof![
+            (0.0..2.0f64).prop_map(FeedChange::Override),
+            Just(FeedChange::Override(0.0)),
+            any::<bool>().prop_map(FeedChange::Hold),
+        ],
+    )
+}
+
+/// Runs a program with feed changes at the given ticks (then override 1 and no hold, so that it
+/// can finish), recording every tick.
+fn run_with_changes(program: &str, machine: &Machine, changes: &[(usize, FeedChange)]) -> Run {
+    let mut e = Engine::new(Arc::from(program), "override.ngc", machine).expect("valid program");
+    let mut r = Run {
+        p: vec![e.tick().p],
+        v: vec![],
+        a: vec![],
+        j: vec![],
+        distance: 0.0,
+        end: [0.0; 3],
+    };
+    let last_change = changes.iter().map(|c| c.0).max().unwrap_or(0);
+    let mut n = 0;
+    while !e.finished() || n <= last_change {
+        for &(_, change) in changes.iter().filter(|c| c.0 == n) {
+            match change {
+                FeedChange::Override(k) => e.set_feed_override(k),
+                FeedChange::Hold(on) => e.set_feed_hold(on),
+            }
+        }
+        if n == last_change + 1 {
+            e.set_feed_hold(false);
+            e.set_feed_override(1.0);
+        }
+        let t = *e.step().expect("no runtime error");
+        r.p.push(t.p);
+        r.v.push(t.v);
+        r.a.push(t.a);
+        r.j.push(t.j);
+        n += 1;
+        assert!(n < 2_000_000, "program does not finish");
+    }
+    r.distance = e.tick().distance;
+    r.end = e.tick().p;
+    r
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Overrides and holds at random ticks, mid-block or not, on line programs (feeds per block)
+    /// and line-and-arc programs: every axis within its limits (from the ticks by finite
+    /// differences too), the end point exact, the path neither cut nor doubled at the changes,
+    /// and the program finishes.
+    #[test]
+    fn random_feed_changes_stay_within_limits_and_finish(
+        points in prop::collection::vec(point(), 1..5),
+        feeds in prop::collection::vec(600.0..8000.0f64, 5),
+        moves in prop::collection::vec(a_move(), 1..5),
+        arcs in any::<bool>(),
+        changes in prop::collection::vec(a_feed_change(), 1..6),
+        exact_stop in any::<bool>(),
+        kind in prop::sample::select(ProfileKind::ALL.to_vec()),
+    ) {
+        let machine = Machine { profile: kind, ..Machine::default() };
+        let (text, length, end) = if arcs {
+            arc_program(&moves, exact_stop)
+        } else {
+            line_program(&points, &feeds, exact_stop)
+        };
+        let r = run_with_changes(&text, &machine, &changes);
+        for i in 0..3 {
+            prop_assert!((r.end[i] - end[i]).abs() <= 1e-12, "end {:?} vs {:?}", r.end, end);
+        }
+        prop_assert!(r.distance <= length * (1.0 + 1e-9) + 1e-12, "{} vs {}", r.distance, length);
+        if exact_stop {
+            prop_assert!((r.distance - length).abs() <= 1e-9 * length + 1e-12, "{} vs {}", r.distance, length);
+        }
+        check_limits(&r, &machine, kind != ProfileKind::Trapezoid);
+    }
+}

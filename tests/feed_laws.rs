@@ -318,3 +318,126 @@ fn snap_check_of_a_short_phase_after_a_long_cruise() {
         check(kind, &req).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
     }
 }
+
+/// A small deterministic generator (xorshift64*) for the comparisons with the old routines.
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn log(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + self.unit() * (hi.ln() - lo.ln())).exp()
+    }
+    fn limits(&mut self) -> Limits {
+        Limits {
+            v_max: 2.0,
+            a_max: self.log(0.2, 30.0),
+            j_max: self.log(5.0, 2000.0),
+            snap_max: self.log(100.0, 1e7),
+        }
+    }
+}
+
+/// The bisection the closed forms and solves replaced (between a good and a bad point, 110 steps).
+fn bisect_reference(mut good: f64, mut bad: f64, ok: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..110 {
+        let mid = 0.5 * (good + bad);
+        if mid == good || mid == bad {
+            break;
+        }
+        if ok(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    good
+}
+
+/// The planner's slow exit (`feed::lowest_exit`, closed form or bracketed Newton) equals the 60-step
+/// bisection it replaced in plan/mod.rs, on 1000 blocks per law where the ramp to the target does
+/// not fit but a stop does (d(v_in, x) rises from x = 0 to a peak above d(v_in, 0)).
+#[test]
+fn lowest_exit_matches_the_bisection_it_replaced() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    for kind in [
+        ProfileKind::Scurve7,
+        ProfileKind::Quintic,
+        ProfileKind::Jerk15,
+        ProfileKind::Mixed57,
+    ] {
+        let mut cases = 0;
+        for _ in 0..200_000 {
+            if cases == 1000 {
+                break;
+            }
+            let lim = rng.limits();
+            let v_in = rng.log(1e-3, 1.0);
+            let target = v_in * 0.6 * rng.unit();
+            let d = |x: f64| feed::ramp_distance(kind, v_in, x, &lim);
+            let (d0, dt) = (d(0.0), d(target));
+            if dt <= d0 * (1.0 + 1e-9) {
+                continue;
+            }
+            cases += 1;
+            let length = d0 + rng.unit() * (dt - d0);
+            // Old: D(v_in, 0) ≤ length, bisection on [0, target] for the last x with D ≤ length.
+            let (mut lo, mut hi) = (0.0, target);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if d(mid) <= length {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let new = feed::lowest_exit(kind, length, v_in, target, &lim);
+            assert!(d(new) <= length, "{kind:?}: d({new}) = {} > {length}", d(new));
+            assert!(
+                (new - lo).abs() <= 1e-9 * v_in,
+                "{kind:?}: {new} vs bisection {lo} (v_in {v_in}, target {target}, L {length}, {lim:?})"
+            );
+        }
+        assert_eq!(cases, 1000, "{kind:?}: too few cases with a rising D");
+    }
+}
+
+/// The unreachable slow-down of the composed laws (the exit of a block whose ramp to v_out does
+/// not fit: the lowest speed whose ramp fits) equals the bisection it replaced, on 1000 blocks
+/// per law.
+#[test]
+fn unreachable_slow_down_matches_the_bisection_it_replaced() {
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    for kind in KINDS {
+        for _ in 0..1000 {
+            let limits = rng.limits();
+            let v_in = rng.log(1e-3, 1.0);
+            let v_out = v_in * rng.unit();
+            let d = |x: f64| feed::ramp_distance(kind, v_in, x, &limits);
+            let length = d(v_out) * rng.unit().max(1e-6);
+            let old = bisect_reference(v_in, v_out, |x| d(x) <= length);
+            let req = BlockRequest {
+                length,
+                v_in,
+                v_out,
+                v_feed: v_in,
+                limits,
+            };
+            let new = Profile::plan(kind, &req).v_end();
+            // (The profile fits its own ramp record; `ramp_distance` may round an ulp apart.)
+            assert!(
+                d(new) <= length * (1.0 + 1e-12),
+                "{kind:?}: d({new}) = {} > {length}",
+                d(new)
+            );
+            assert!(
+                (new - old).abs() <= 1e-9 * v_in,
+                "{kind:?}: {new} vs bisection {old} ({req:?})"
+            );
+        }
+    }
+}

@@ -25,6 +25,74 @@ pub trait RampLaw {
     fn rise_estimate(&self, length: f64, v: f64) -> f64 {
         self.max_rise(length, v)
     }
+    /// Speed drops y ∈ [0, v] with d(v, v − y) = length in closed form (NaN where absent), for laws
+    /// that have them; `None`: the bracketed Newton of [`drop_root`] finds the one wanted.
+    fn drop_roots(&self, _length: f64, _v: f64) -> Option<[f64; 5]> {
+        None
+    }
+}
+
+/// The drop y ∈ [lo, hi] with d(v, v − y) = length, given that [lo, hi] holds exactly one
+/// (d − length changes sign once there): the closed-form root if the law has one, else bracketed
+/// Newton on d(v, v − y), with slope −T/2 + (2v − y)/2 · T'(y). NaN if rounding lost the root.
+fn drop_root<R: RampLaw>(law: &R, length: f64, v: f64, [lo, hi]: [f64; 2], smallest: bool) -> f64 {
+    if let Some(roots) = law.drop_roots(length, v) {
+        let within = roots.into_iter().filter(|y| *y >= lo && *y <= hi);
+        let pick = if smallest { f64::min } else { f64::max };
+        return within.reduce(pick).unwrap_or(f64::NAN);
+    }
+    // d rises through `length` at the smallest root and falls through it at the largest: with the
+    // sign, f is increasing across the root wanted (f(lo) ≤ 0 < f(hi), as newton_bounded needs).
+    let sign = if smallest { 1.0 } else { -1.0 };
+    let f = |y: f64| {
+        let (t, dt) = law.time(y);
+        let d = 0.5 * (2.0 * v - y) * t;
+        (sign * (d - length), sign * (0.5 * (2.0 * v - y) * dt - 0.5 * t))
+    };
+    newton_bounded(lo, hi, 0.5 * (lo + hi), RESIDUAL * length, f)
+}
+
+/// Exit of a slow-down v_in → v_out that does not fit in `length` (d(v_in, v_out) > length): the
+/// lowest speed whose ramp from v_in fits. d(v_in, v_in − y) is unimodal in the drop y, zero at
+/// y = 0 and above `length` at y = v_in − v_out, so the one crossing in between is on its rising
+/// side: the smallest root, then made exact (a few ulps less drop).
+pub fn slow_down_exit<R: RampLaw>(law: &R, length: f64, v_in: f64, v_out: f64) -> f64 {
+    let g = |y: f64| distance(law, v_in, v_in - y);
+    let y_max = v_in - v_out;
+    if !law.valid() {
+        // No finite ramp times to solve with: the bounded bisection copes with any limits.
+        return bisect(v_in, v_out, |x| distance(law, v_in, x) <= length);
+    }
+    let y = drop_root(law, length, v_in, [0.0, y_max], true);
+    if y.is_nan() {
+        // Rounding put the root just outside [0, y_max]: bisection on the predicate as evaluated.
+        return bisect(v_in, v_out, |x| distance(law, v_in, x) <= length);
+    }
+    v_in - fit_down(y.clamp(0.0, y_max), 0.0, length, g).0
+}
+
+/// Largest exit x ≤ `target` with d(v_in, x) ≤ `length`, for a slow-down whose ramp to `target`
+/// does not fit but a stop does (0 if neither): d(v_in, x) rises from x = 0 to a peak, then falls
+/// to 0 at v_in, so the crossing is on the rising side in x: the largest drop root in
+/// [v_in − target, v_in], then made exact (a few ulps lower).
+pub fn lowest_exit<R: RampLaw>(law: &R, length: f64, v_in: f64, target: f64) -> f64 {
+    let d = |x: f64| distance(law, v_in, x);
+    if d(target) <= length {
+        return target;
+    }
+    if d(0.0) > length {
+        return 0.0;
+    }
+    let y = if law.valid() {
+        drop_root(law, length, v_in, [v_in - target, v_in], false)
+    } else {
+        f64::NAN
+    };
+    if y.is_nan() {
+        // No finite ramp times, or rounding lost the root: bisection on the predicate.
+        return bisect(0.0, target, |x| d(x) <= length);
+    }
+    fit_down((v_in - y).clamp(0.0, target), 0.0, length, d).0
 }
 
 /// Distance of the fastest change v1 → v2: (v1 + v2)/2 · T(|v2 − v1|).
@@ -109,7 +177,7 @@ impl Shape {
             let v_end = if v_out > v_in {
                 max_speed(law, l, v_in).min(v_out)
             } else {
-                bisect(v_in, v_out, |v| dist(v_in, v) <= l)
+                slow_down_exit(law, l, v_in, v_out)
             };
             return Shape {
                 v_in,

@@ -6,6 +6,7 @@
 //! distances s_cr1..s_cr4 fall out of choosing the peak acceleration below.
 
 use super::compose::{self, RampLaw, Shape, TwoRamps};
+use super::roots::fit_down;
 use super::{scurve7, BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
@@ -53,37 +54,7 @@ fn rise(a_peak: f64, lim: &Limits) -> (f64, f64, f64) {
 impl Ramp15 {
     /// Fastest change v1 → v2 within A, J, R (a = j = 0 at both ends).
     pub fn new(v1: f64, v2: f64, lim: &Limits) -> Ramp15 {
-        let dv = v2 - v1;
-        let m = dv.abs();
-        if m == 0.0 || !(lim.a_max > 0.0 && lim.j_max > 0.0) {
-            return Ramp15 {
-                dv: 0.0,
-                ..Ramp15::default()
-            };
-        }
-        let (a, j, r) = (lim.a_max, lim.j_max, snap(lim));
-        // Speed gained while the acceleration rises to A and falls back (no constant-A phase).
-        let (t_j, t_2, _) = rise(a, lim);
-        let rise_a = 2.0 * t_j + t_2;
-        let a_peak = if m >= a * rise_a {
-            a
-        } else if m >= 2.0 * j * j * j / (r * r) {
-            // a·(J/R + a/J) = |Δv|: the stable root of a²/J + aJ/R − |Δv| = 0.
-            2.0 * m / ((j * j / (r * r) + 4.0 * m / j).sqrt() + j / r)
-        } else {
-            // a·2·sqrt(a/R) = |Δv|.
-            (m * m * r / 4.0).cbrt()
-        };
-        let (t_j, t_2, j_peak) = rise(a_peak, lim);
-        let t_4 = (m / a_peak - (2.0 * t_j + t_2)).max(0.0);
-        Ramp15 {
-            dv,
-            t_j,
-            t_2,
-            t_4,
-            j_peak,
-            a_peak,
-        }
+        Law::new(lim).ramp(v1, v2)
     }
 
     pub fn duration(&self) -> f64 {
@@ -152,11 +123,18 @@ pub(super) fn symmetric_ramp_at(half: &[(f64, f64, f64)], dv: f64, total: f64, v
 
 /// The 15-phase ramp's acceleration is symmetric in time: it covers the mean speed times its duration.
 pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
-    0.5 * (v1 + v2) * Ramp15::new(v1, v2, lim).duration()
+    compose::distance(&Law::new(lim), v1, v2)
 }
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
     compose::max_speed(&Law::new(lim), length, v_out)
+}
+
+/// Largest exit x ≤ `target` whose ramp from v_in fits in `length`, when a stop does (else 0).
+pub fn lowest_exit(length: f64, v_in: f64, target: f64, lim: &Limits) -> f64 {
+    let x = compose::lowest_exit(&Law::new(lim), length, v_in, target);
+    // Exact against `ramp_distance` too (the ramp record rounds a little differently).
+    fit_down(x, 0.0, length, |x| ramp_distance(v_in, x, lim)).0
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
@@ -164,47 +142,96 @@ pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
 }
 
 /// The 15-phase ramp as a [`RampLaw`]. With the peak acceleration a: T = T_rise(A) + Δv/A when A is
-/// reached; T = 2(J/R + a/J) with a(J/R + a/J) = Δv when only J is; T = 4·(Δv/2R)^(1/3) otherwise.
+/// reached; T = 2(J/R + a/J) with a(J/R + a/J) = Δv when only J is, i.e. T = J/R + s with
+/// s = sqrt((J/R)² + 4Δv/J); T = 4·(Δv/2R)^(1/3) otherwise. What depends on the limits only is
+/// computed once (the peak speed's Newton evaluates T a dozen times per block).
 struct Law {
     lim: Limits,
-    /// Rise time 2t_j + t_2 of the acceleration to A, and the Δv bounds of the three regimes.
+    /// The rise of the acceleration to A: (t_j, t_2, j_peak), and its time 2t_j + t_2.
+    rise_to_a: (f64, f64, f64),
     rise_a: f64,
+    /// The Δv bounds of the three regimes.
     dv_a: f64,
     dv_j: f64,
-    /// J/R and J²/R (0 without snap limit).
+    /// J/R (0 without snap limit), (J/R)², 1/A, 4/J, 2/J, 1/(2R), R/4.
     j_r: f64,
-    jj_r: f64,
+    j_r2: f64,
+    inv_a: f64,
+    four_inv_j: f64,
+    two_inv_j: f64,
+    inv_2r: f64,
+    r_4: f64,
 }
 
 impl Law {
     fn new(lim: &Limits) -> Law {
         let (a, j, r) = (lim.a_max, lim.j_max, snap(lim));
-        let (t_j, t_2, _) = rise(a, lim);
-        let rise_a = 2.0 * t_j + t_2;
+        let rise_to_a = rise(a, lim);
+        let rise_a = 2.0 * rise_to_a.0 + rise_to_a.1;
+        let j_r = j / r;
         Law {
             lim: *lim,
+            rise_to_a,
             rise_a,
             dv_a: a * rise_a,
-            dv_j: 2.0 * j * j * j / (r * r),
-            j_r: j / r,
-            jj_r: j * j / r,
+            dv_j: 2.0 * j * j_r * j_r,
+            j_r,
+            j_r2: j_r * j_r,
+            inv_a: 1.0 / a,
+            four_inv_j: 4.0 / j,
+            two_inv_j: 2.0 / j,
+            inv_2r: 0.5 / r,
+            r_4: 0.25 * r,
+        }
+    }
+
+    /// Fastest change v1 → v2 (the regimes of `time`, as a record).
+    fn ramp(&self, v1: f64, v2: f64) -> Ramp15 {
+        let dv = v2 - v1;
+        let m = dv.abs();
+        let (a, j) = (self.lim.a_max, self.lim.j_max);
+        if m == 0.0 || !(a > 0.0 && j > 0.0) {
+            return Ramp15 {
+                dv: 0.0,
+                ..Ramp15::default()
+            };
+        }
+        let (a_peak, (t_j, t_2, j_peak)) = if m >= self.dv_a {
+            (a, self.rise_to_a)
+        } else if m >= self.dv_j {
+            // a·(J/R + a/J) = |Δv|: the stable root of a²/J + aJ/R − |Δv| = 0; J is reached.
+            let a_peak = 2.0 * m / ((self.j_r2 + m * self.four_inv_j).sqrt() + self.j_r);
+            (a_peak, rise(a_peak, &self.lim))
+        } else {
+            // a·2·sqrt(a/R) = |Δv|.
+            let a_peak = (m * m * self.r_4).cbrt();
+            (a_peak, rise(a_peak, &self.lim))
+        };
+        let t_4 = (m / a_peak - (2.0 * t_j + t_2)).max(0.0);
+        Ramp15 {
+            dv,
+            t_j,
+            t_2,
+            t_4,
+            j_peak,
+            a_peak,
         }
     }
 }
 
 impl RampLaw for Law {
-    /// The duration of [`Ramp15::new`] without building the ramp, and its slope.
+    /// The duration of [`Law::ramp`] without building the ramp, and its slope.
     fn time(&self, m: f64) -> (f64, f64) {
         let (a, j) = (self.lim.a_max, self.lim.j_max);
         if m == 0.0 || !(a > 0.0 && j > 0.0) {
             (0.0, 0.0)
         } else if m >= self.dv_a {
-            (self.rise_a + m / a, 1.0 / a)
+            (self.rise_a + m * self.inv_a, self.inv_a)
         } else if m >= self.dv_j {
-            let a_peak = 2.0 * m / ((self.j_r * self.j_r + 4.0 * m / j).sqrt() + self.j_r);
-            (2.0 * (self.j_r + a_peak / j), 2.0 / (self.jj_r + 2.0 * a_peak))
+            let s = (self.j_r2 + m * self.four_inv_j).sqrt();
+            (self.j_r + s, self.two_inv_j / s)
         } else {
-            let t = 4.0 * (m / (2.0 * snap(&self.lim))).cbrt();
+            let t = 4.0 * (m * self.inv_2r).cbrt();
             (t, t / (3.0 * m))
         }
     }
@@ -236,14 +263,15 @@ pub struct Jerk15 {
 
 pub fn plan(req: &BlockRequest) -> Jerk15 {
     let lim = req.limits;
-    let shape = Shape::solve(&Law::new(&lim), req);
+    let law = Law::new(&lim);
+    let shape = Shape::solve(&law, req);
     Jerk15 {
         v_in: shape.v_in,
         v_peak: shape.v_peak,
         v_end: shape.v_end,
-        up: Ramp15::new(shape.v_in, shape.v_peak, &lim),
+        up: law.ramp(shape.v_in, shape.v_peak),
         t_cruise: shape.cruise_time(),
-        down: Ramp15::new(shape.v_peak, shape.v_end, &lim),
+        down: law.ramp(shape.v_peak, shape.v_end),
     }
 }
 

@@ -84,6 +84,11 @@ pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
     compose::max_speed(&Law(*lim), length, v_out)
 }
 
+/// Largest exit x ≤ `target` whose ramp from v_in fits in `length`, when a stop does (else 0).
+pub fn lowest_exit(length: f64, v_in: f64, target: f64, lim: &Limits) -> f64 {
+    compose::lowest_exit(&Law(*lim), length, v_in, target)
+}
+
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
     compose::max_speed(&Law(*lim), length, v_in)
 }
@@ -108,6 +113,10 @@ impl RampLaw for Law {
     }
     fn max_rise(&self, length: f64, v: f64) -> f64 {
         scurve7::max_rise(length, v, &self.0)
+    }
+    /// The ramp is scurve7's: its speed drops in closed form.
+    fn drop_roots(&self, length: f64, v: f64) -> Option<[f64; 5]> {
+        Some(scurve7::drop_roots(length, v, self.0.a_max, self.0.j_max))
     }
 }
 

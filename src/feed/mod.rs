@@ -1,11 +1,13 @@
 //! Feed profiles: the law s(t) along one block, from `v_in` to `v_out` through the feed `v_feed`,
 //! within the path limits. Every law here keeps acceleration zero at block ends (seed 004).
 //!
-//! Each law lives in its own file and provides the same four functions:
+//! Each law lives in its own file and provides the same five functions:
 //! - `plan(&BlockRequest) -> <Law>`: the block's profile (a plain record, closed form in t);
 //! - `ramp_distance(v1, v2, &Limits)`: distance of the fastest speed change v1 → v2 (a = 0 at both ends);
 //! - `max_entry(length, v_out, &Limits)`: largest v_in ≥ v_out whose ramp down to v_out fits in `length`;
-//! - `max_exit(length, v_in, &Limits)`: largest v_out ≥ v_in whose ramp up from v_in fits in `length`.
+//! - `max_exit(length, v_in, &Limits)`: largest v_out ≥ v_in whose ramp up from v_in fits in `length`;
+//! - `lowest_exit(length, v_in, target, &Limits)`: largest exit ≤ target whose ramp down fits, when a
+//!   stop does.
 //!
 //! The look-ahead planner only uses these, so every law plans real blocks the same way.
 
@@ -207,6 +209,26 @@ pub fn max_entry(kind: ProfileKind, length: f64, v_out: f64, lim: &Limits) -> f6
         ProfileKind::Jerk15 => jerk15::max_entry(length, v_out, lim),
         ProfileKind::Mixed57 => mixed57::max_entry(length, v_out, lim),
         ProfileKind::Trapezoid => trapezoid::max_entry(length, v_out, lim),
+    }
+}
+
+/// Largest exit x ≤ `target` whose ramp from `v_in` fits in `length`, when a stop fits (0 if not).
+/// d(v_in, x) is not monotone in x (slowing from v to v/3 can take longer than stopping): this is
+/// the crossing on its rising side, in closed form where the law has one.
+pub fn lowest_exit(kind: ProfileKind, length: f64, v_in: f64, target: f64, lim: &Limits) -> f64 {
+    match kind {
+        ProfileKind::Scurve7 => scurve7::lowest_exit(length, v_in, target, lim),
+        ProfileKind::Quintic => quintic::lowest_exit(length, v_in, target, lim),
+        ProfileKind::Jerk15 => jerk15::lowest_exit(length, v_in, target, lim),
+        ProfileKind::Mixed57 => mixed57::lowest_exit(length, v_in, target, lim),
+        // d(v_in, x) = (v_in² − x²)/2A falls as x rises: the target fits whenever a stop does.
+        ProfileKind::Trapezoid => {
+            if trapezoid::ramp_distance(v_in, target, lim) <= length {
+                target
+            } else {
+                0.0
+            }
+        }
     }
 }
 

@@ -4,7 +4,8 @@
 //! length is a cubic (t_d by the jerk) or a quadratic (t_d by the acceleration) in closed form.
 
 use super::compose::{self, Composed, RampCruiseRamp, RampLaw, Shape};
-use super::roots::{cubic_pos, quadratic_pos};
+use super::roots::{cubic_depressed, cubic_pos, quadratic_pos};
+use super::tolerance::ROOT_SLACK;
 use super::{BlockRequest, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
@@ -30,6 +31,11 @@ pub fn ramp_distance(v1: f64, v2: f64, lim: &Limits) -> f64 {
 
 pub fn max_entry(length: f64, v_out: f64, lim: &Limits) -> f64 {
     compose::max_speed(&Law(*lim), length, v_out)
+}
+
+/// Largest exit x ≤ `target` whose ramp from v_in fits in `length`, when a stop does (else 0).
+pub fn lowest_exit(length: f64, v_in: f64, target: f64, lim: &Limits) -> f64 {
+    compose::lowest_exit(&Law(*lim), length, v_in, target)
 }
 
 pub fn max_exit(length: f64, v_in: f64, lim: &Limits) -> f64 {
@@ -66,6 +72,33 @@ impl RampLaw for Law {
             return s * s;
         }
         quadratic_pos(ACC_FACTOR / a, 2.0 * ACC_FACTOR * v / a, -2.0 * length)
+    }
+    /// (2v − y)·T(y) = 2L: with T by the jerk, s = sqrt(y) solves s³ − 2v·s + 2L·sqrt(J/5.773) = 0
+    /// (up to three real roots: trigonometric form); with T by the acceleration,
+    /// y² − 2v·y + 2L·A/1.875 = 0, y = v ∓ sqrt(v² − 2L·A/1.875).
+    fn drop_roots(&self, length: f64, v: f64) -> Option<[f64; 5]> {
+        let (a, j) = (self.0.a_max, self.0.j_max);
+        let x_c = JERK_FACTOR * a * a / (ACC_FACTOR * ACC_FACTOR * j);
+        let mut out = [f64::NAN; 5];
+        let cubic = cubic_depressed(-2.0 * v, 2.0 * length * (j / JERK_FACTOR).sqrt());
+        for (k, s) in cubic.into_iter().enumerate() {
+            // (Roots within rounding of a regime's end are kept: both forms agree there.)
+            if s >= 0.0 && s * s <= x_c.min(v) * (1.0 + ROOT_SLACK) {
+                out[k] = (s * s).min(v);
+            }
+        }
+        let c = 2.0 * length * a / ACC_FACTOR;
+        let disc = v * v - c;
+        if disc >= 0.0 {
+            let w = disc.sqrt();
+            // The smaller root without cancellation: c/(v + w).
+            for (k, y) in [c / (v + w), v + w].into_iter().enumerate() {
+                if y > x_c && y <= v * (1.0 + ROOT_SLACK) {
+                    out[3 + k] = y.min(v);
+                }
+            }
+        }
+        Some(out)
     }
 }
 

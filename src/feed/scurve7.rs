@@ -197,6 +197,18 @@ fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) ->
     (v_hi + u * u).clamp(v_hi, v_cap)
 }
 
+/// Largest exit x ≤ `target` with d(v_in, x) ≤ `length` when a stop fits (0 otherwise): `target`
+/// if its ramp fits, else the slow-down exit below it (closed form).
+pub fn lowest_exit(length: f64, v_in: f64, target: f64, lim: &Limits) -> f64 {
+    if ramp_distance(v_in, target, lim) <= length {
+        return target;
+    }
+    if ramp_distance(v_in, 0.0, lim) > length {
+        return 0.0;
+    }
+    slow_down_exit(length, v_in, target, lim)
+}
+
 /// Exit speed of a slow-down v_in → v_out that does not fit in `length` (cruise at v_in first).
 /// D(v_in, x) is unimodal in x (see plan/mod.rs): the largest exit below v_out if a stop fits, else
 /// the lowest one above v_out. In the speed drop y = v_in − x, D = L is one of the roots of
@@ -226,7 +238,7 @@ fn slow_down_exit(length: f64, v_in: f64, v_out: f64, lim: &Limits) -> f64 {
 /// (y ≤ A²/J), (2v − y)·sqrt(y/J) = L, a depressed cubic s³ − 2v·s + L·sqrt(J) = 0 in s = sqrt(y)
 /// (three real roots: trigonometric form); with plateau, (2v − y)(y/A + A/J) = 2L, the quadratic
 /// y²/A + (A/J − 2v/A)·y + 2L − 2vA/J = 0.
-fn drop_roots(length: f64, v: f64, a: f64, j: f64) -> [f64; 5] {
+pub(super) fn drop_roots(length: f64, v: f64, a: f64, j: f64) -> [f64; 5] {
     let ac = a * a / j;
     let mut out = [f64::NAN; 5];
     for (k, s) in cubic_depressed(-2.0 * v, length * j.sqrt())

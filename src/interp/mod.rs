@@ -8,7 +8,7 @@ pub use differences::Differences;
 
 use crate::feed::{FeedLaw, Kin};
 use crate::path::{Geo, Segment};
-use crate::plan::Planned;
+use crate::plan::{Here, Planned};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -122,17 +122,9 @@ impl Interpolator {
     /// Advance the path time by `dt` (s), taking blocks from `queue` as the previous ones end.
     /// Returns the time not used because the queue ran dry (0 when all of `dt` was used): the
     /// caller refills the queue and calls again with it.
-    pub fn advance(&mut self, dt: f64, queue: &mut VecDeque<Planned>) -> f64 {
-        self.advance_fenced(dt, queue, false)
-    }
-
-    /// As `advance`; with `fence`, no new block is started (a feed hold has stopped the path).
-    pub fn advance_fenced(&mut self, mut dt: f64, queue: &mut VecDeque<Planned>, fence: bool) -> f64 {
+    pub fn advance(&mut self, mut dt: f64, queue: &mut VecDeque<Planned>) -> f64 {
         loop {
             if self.current.is_none() {
-                if fence {
-                    return 0.0;
-                }
                 let Some(planned) = queue.pop_front() else {
                     return dt;
                 };
@@ -159,43 +151,29 @@ impl Interpolator {
         }
     }
 
-    /// Cut the current block where it is, if its acceleration is zero there (a cruise phase) and it
-    /// is not a constant-speed transition: the part done is booked, the rest comes back as a
-    /// segment with the speed it is entered at. At a block boundary (no current block) nothing is
-    /// cut and `None` comes back too; the caller re-plans from the queue.
-    pub fn cut(&mut self, a_tolerance: f64) -> Option<(crate::path::PathBlock, f64)> {
-        let c = self.current.as_ref()?;
-        let block = c.planned.block.clone();
-        if block.constant_speed || matches!(block.segment, Segment::Dwell { .. }) {
-            return None;
+    /// Where the path is, for a feed override or hold (plain data for the plan stage).
+    pub fn here(&self) -> Here<'_> {
+        match &self.current {
+            Some(c) => Here::Inside {
+                block: &c.planned.block,
+                kin: c.planned.profile.at(c.tau),
+            },
+            None => Here::Between,
         }
-        let k = c.planned.profile.at(c.tau);
-        if k.a.abs() > a_tolerance {
-            return None;
-        }
-        let length = block.segment.length();
-        let s = k.s.clamp(0.0, length);
-        let rest = block.segment.part(s, length - s)?;
+    }
+
+    /// End the block in progress where it is (its rest has been planned again): the part done
+    /// is booked, the path rests at the current point until the next block starts.
+    pub fn end_here(&mut self) {
+        let Some(c) = self.current.take() else { return };
+        let block = &c.planned.block;
+        let s = c.planned.profile.at(c.tau).s.clamp(0.0, block.segment.length());
+        let g = block.segment.eval(s);
         self.time_done += c.tau;
         self.distance_done += s;
         self.last_line = block.line;
-        self.rest = block.segment.eval(s).p;
-        self.last_tangent = block.segment.eval(s).d1;
-        self.current = None;
-        Some((
-            crate::path::PathBlock {
-                segment: rest,
-                ..block
-            },
-            k.v,
-        ))
-    }
-
-    /// Speed and acceleration now (0 at rest).
-    pub fn kin(&self) -> Kin {
-        self.current
-            .as_ref()
-            .map_or(Kin::default(), |c| c.planned.profile.at(c.tau))
+        self.rest = g.p;
+        self.last_tangent = g.d1;
     }
 
     fn finish_block(&mut self, c: &Current) {

@@ -1,6 +1,7 @@
 //! Circular arcs and helices (G2/G3, circular corner blends): exact evaluation w.r.t. arc length
 //! and the path limits of seed 004 §2.3–2.4 (eq. 17–24) with the chord-error limit of seed 003.
 
+use super::budget::Budget;
 use super::{add, cross, scale, Geo};
 use crate::config::Machine;
 use crate::feed::Limits;
@@ -247,7 +248,7 @@ const TANGENTIAL_SHARE: f64 = 0.1;
 /// jerk eq. 19–20 with the chain-rule terms, J_c = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·A_c)/|d1_i|;
 /// the paper evaluates them at the arc ends only, we bound them over the whole sweep. A_c is taken
 /// no larger than half its free value nor than what leaves the jerk its share; if A_c or J_c
-/// would fall below `TANGENTIAL_SHARE` of their free values, v_max is lowered (bounded steps).
+/// would fall below `TANGENTIAL_SHARE` of their free values, v_max is lowered to where they do not.
 /// So axis a = d2·v² + d1·a and j = d3·v³ + 3·d2·v·a + d1·j stay within the axis limits for any
 /// v ≤ v_max, |a| ≤ A_c, |j| ≤ J_c.
 pub fn arc_limits(arc: &Arc, machine: &Machine) -> Limits {
@@ -271,7 +272,7 @@ pub struct Shares {
 /// Path limits on any curve whose derivatives w.r.t. its parameter are bounded per axis by
 /// `b` (|p'|, |p''|, |p'''|), `rho` its smallest radius of curvature (chord error), as described
 /// for arcs above, the speed never above `v_cap`. The largest v_max whose budget keeps the
-/// tangential shares is found by bisection (the budget shrinks as v grows).
+/// tangential shares is solved in closed form (`Budget::max_speed`: each constraint is monotone).
 pub fn curve_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine, shares: Shares) -> Limits {
     let b = &max_bounds(cells);
     let v0 = constant_speed_limit(b, machine)
@@ -295,51 +296,15 @@ pub fn curve_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine
     if let Some(j) = machine.max_path_jerk {
         j_free = j_free.min(j);
     }
-    let (a_min, j_min) = (shares.tangential * a_free, shares.tangential * j_free);
-    // (A_c, J_c) at speed v, or None when either falls below its share. Each cell bounds p',
-    // p'' and p''' at the same points, so the centripetal and tangential parts add per cell.
-    let budget = |v: f64| -> Option<(f64, f64)> {
-        let mut a_c = a_share * a_free;
-        for cell in cells {
-            for (i, ax) in machine.axes.iter().enumerate() {
-                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
-                if d1 > 1e-12 {
-                    a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
-                    // Leave the jerk its share: d3·v³ + 3·d2·v·a + d1·j_min ≤ J_i.
-                    if d2 * v > 1e-12 {
-                        a_c = a_c.min((ax.max_jerk - d3 * v * v * v - d1 * j_min) / (3.0 * d2 * v));
-                    }
-                } else if d2 * v * v > ax.max_acceleration || d3 * v * v * v > ax.max_jerk {
-                    return None;
-                }
-            }
-        }
-        let mut j_c = j_free;
-        for cell in cells {
-            for (i, ax) in machine.axes.iter().enumerate() {
-                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
-                if d1 > 1e-12 {
-                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a_c) / d1);
-                }
-            }
-        }
-        (a_c >= a_min && j_c >= j_min).then_some((a_c, j_c))
+    let budget = Budget {
+        cells,
+        machine,
+        a_cap: a_share * a_free,
+        j_free,
+        a_min: shares.tangential * a_free,
+        j_min: shares.tangential * j_free,
     };
-    let (v, (a_c, j_c)) = match budget(v0) {
-        Some(found) => (v0, found),
-        None => {
-            let (mut lo, mut hi) = (0.0, v0);
-            for _ in 0..BISECTION_STEPS {
-                let mid = 0.5 * (lo + hi);
-                if budget(mid).is_some() {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            (lo, budget(lo).unwrap_or((a_min, j_min)))
-        }
-    };
+    let (v, (a_c, j_c)) = budget.max_speed(v0);
     Limits {
         v_max: v,
         a_max: a_c,
@@ -360,10 +325,6 @@ pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
     }
     b
 }
-
-/// Steps of the v_max bisection (the interval shrinks by 2^-32: 2e-10 of v relative; the lower
-/// end is always feasible, so fewer steps only cost speed).
-const BISECTION_STEPS: usize = 32;
 
 #[cfg(test)]
 mod tests {

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 mod arc;
 mod blend;
+mod budget;
 mod chain;
 mod corner;
 mod hermite;

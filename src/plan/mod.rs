@@ -9,11 +9,14 @@
 //!   of "slow to the next limit" and "stop at the block end" (D is unimodal in the exit speed on
 //!   [0, v], so the best exit below the limit is one of the two interval ends).
 //! - Forward pass: from the actual entry speed, the exit is the next limit if reachable, the best
-//!   reachable speed otherwise (accelerating: `max_exit`; slowing: the largest exit on the rising
-//!   branch of D, found by a fixed number of bisection steps — only when a stop was planned).
+//!   reachable speed otherwise (accelerating: `max_exit`; slowing: `lowest_exit`, the largest exit
+//!   on the rising branch of D, in closed form where the law has one — only when a stop was planned).
 //!
 //! Work is per block: the window is refilled, swept backwards until the limits stop changing, and
 //! its first half emitted, so each block costs O(1) profile solves amortised.
+
+mod feed_control;
+pub use feed_control::{FeedControl, Here, Replan};
 
 use crate::feed::{self, BlockRequest, FeedLaw, Profile, ProfileKind};
 use crate::path::{PathBlock, Segment};
@@ -61,9 +64,6 @@ pub struct Planner {
 /// Segments released per backward pass when the window is full.
 const EMIT_BATCH: usize = 16;
 
-/// Iterations of the bounded bisection (interval shrinks by 2⁻⁶⁰, below f64 resolution).
-const BISECTION_STEPS: usize = 60;
-
 impl Planner {
     pub fn new(kind: ProfileKind, lookahead_blocks: usize) -> Planner {
         Planner {
@@ -79,8 +79,8 @@ impl Planner {
 
     /// Start again from a point of the path reached at speed `v_start` (acceleration zero): the
     /// segments waiting in the window come back to the caller, to be pushed again after what is
-    /// left of the current one; the next segment pushed enters at `v_start`.
-    pub fn restart(&mut self, v_start: f64) -> Vec<PathBlock> {
+    /// left of the current one; the next segment pushed enters at `v_start` (override and hold).
+    fn restart(&mut self, v_start: f64) -> Vec<PathBlock> {
         let blocks = self.window.drain(..).map(|e| e.block).collect();
         self.v_prev = v_start;
         self.junction_prev = f64::INFINITY;
@@ -100,6 +100,40 @@ impl Planner {
 
     /// Take one segment; emit planned segments to `out` when the window is full.
     pub fn push(&mut self, block: PathBlock, out: &mut VecDeque<Planned>) {
+        self.admit(block);
+        // A full window releases a small batch: one backward pass serves EMIT_BATCH segments
+        // (the pass re-plans the deceleration zone at the window's end, tens of segments on
+        // micro-segment programs), and no tick pays for a large burst.
+        // A constant-speed transition at the window's end would be planned to stop there, at
+        // zero speed for ever: the window waits for the block after it, which can stop.
+        let last_can_stop = !self.window.back().is_some_and(|e| e.block.constant_speed);
+        if self.window.len() >= self.capacity && last_can_stop {
+            self.backward();
+            for _ in 0..EMIT_BATCH.min(self.capacity / 2) {
+                self.emit_front(out);
+            }
+        }
+    }
+
+    /// Largest speed at which `blocks`, the path from a point on, may be entered whatever the
+    /// feed there (a forced entry), at the feed scale `scale`: the backward pass over them from a
+    /// stop after the last one (or after a full window). Entries at or below it are planned
+    /// within the limits.
+    fn entry_limit_of<'a>(&self, blocks: impl Iterator<Item = &'a PathBlock>, scale: f64) -> f64 {
+        let mut scratch = Planner::new(self.kind, self.capacity);
+        scratch.set_feed_scale(scale);
+        scratch.junction_prev = f64::INFINITY;
+        scratch.forced_entry = Some(f64::INFINITY);
+        for b in blocks.take(self.capacity) {
+            scratch.admit(b.clone());
+        }
+        scratch.backward();
+        // No segment known after the point: the path stops there.
+        scratch.window.front().map_or(0.0, |e| e.v_in_lim)
+    }
+
+    /// Add a segment to the window's end with its entry cap and stop limit.
+    fn admit(&mut self, block: PathBlock) {
         let v_feed = if self.feed_scale != 1.0 {
             (block.v_feed * self.feed_scale).min(block.limits.v_max)
         } else {
@@ -126,18 +160,6 @@ impl Planner {
             v_in_stop,
             v_feed,
         });
-        // A full window releases a small batch: one backward pass serves EMIT_BATCH segments
-        // (the pass re-plans the deceleration zone at the window's end, tens of segments on
-        // micro-segment programs), and no tick pays for a large burst.
-        // A constant-speed transition at the window's end would be planned to stop there, at
-        // zero speed for ever: the window waits for the block after it, which can stop.
-        let last_can_stop = !self.window.back().is_some_and(|e| e.block.constant_speed);
-        if self.window.len() >= self.capacity && last_can_stop {
-            self.backward();
-            for _ in 0..EMIT_BATCH.min(self.capacity / 2) {
-                self.emit_front(out);
-            }
-        }
     }
 
     /// After the program's last segment: plan and emit the front segment of the window (a stop
@@ -158,6 +180,11 @@ impl Planner {
             self.emit_front(out);
         }
         self.junction_prev = 0.0;
+    }
+
+    /// The segments waiting in the window, in order.
+    fn window(&self) -> impl Iterator<Item = &PathBlock> {
+        self.window.iter().map(|e| &e.block)
     }
 
     /// Number of segments waiting in the window.
@@ -223,10 +250,8 @@ impl Planner {
             v_in
         } else if target >= v_in {
             target.min(feed::max_exit(self.kind, length, v_in, &lim))
-        } else if feed::ramp_distance(self.kind, v_in, target, &lim) <= length {
-            target
         } else {
-            self.best_slow_exit(v_in, target, length, &lim)
+            feed::lowest_exit(self.kind, length, v_in, target, &lim)
         };
         let v_feed = if e.block.constant_speed {
             v_in
@@ -249,25 +274,6 @@ impl Planner {
             v_out,
             profile,
         });
-    }
-
-    /// Largest exit x ≤ `target` with D(v_in, x) ≤ length, when D(v_in, target) > length: D rises
-    /// from x = 0 to a peak then falls, and D(v_in, 0) ≤ length (the backward pass planned a stop),
-    /// so the answer is the crossing on the rising branch.
-    fn best_slow_exit(&self, v_in: f64, target: f64, length: f64, lim: &feed::Limits) -> f64 {
-        let (mut lo, mut hi) = (0.0, target);
-        if feed::ramp_distance(self.kind, v_in, 0.0, lim) > length {
-            return 0.0;
-        }
-        for _ in 0..BISECTION_STEPS {
-            let mid = 0.5 * (lo + hi);
-            if feed::ramp_distance(self.kind, v_in, mid, lim) <= length {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        lo
     }
 }
 
