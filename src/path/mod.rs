@@ -295,21 +295,15 @@ impl PathBuilder {
     }
 
     fn push_merged(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
+        let line = |to| {
+            Segment::Line(Line {
+                start: block.from,
+                end: to,
+            })
+        };
         let (segment, feed) = match block.motion {
-            Motion::Rapid { to } => (
-                Segment::Line(Line {
-                    start: block.from,
-                    end: to,
-                }),
-                self.machine.max_feed,
-            ),
-            Motion::Linear { to } => (
-                Segment::Line(Line {
-                    start: block.from,
-                    end: to,
-                }),
-                block.feed,
-            ),
+            Motion::Rapid { to } => (line(to), self.machine.max_feed),
+            Motion::Linear { to } => (line(to), block.feed),
             Motion::Arc {
                 to,
                 center,
@@ -320,50 +314,26 @@ impl PathBuilder {
                 Some(a) => (Segment::Arc(a), block.feed),
                 None => return,
             },
-            Motion::Dwell { seconds } => {
-                self.release(0.0, out);
-                self.smooth.stop(&self.machine, out);
-                out.push(PathBlock {
-                    line: block.line,
-                    segment: Segment::Dwell {
-                        at: block.from,
-                        seconds: seconds.max(0.0),
-                    },
-                    v_feed: 0.0,
-                    limits: self.rest_limits(),
-                    v_end_max: 0.0,
-                    constant_speed: false,
-                    before_transition: false,
-                });
-                return;
-            }
-            Motion::Stop(_) => {
-                self.release(0.0, out);
-                self.smooth.stop(&self.machine, out);
-                return;
-            }
+            Motion::Dwell { seconds } => return self.stop(block, Some(seconds), out),
+            Motion::Stop(_) => return self.stop(block, None, out),
         };
         let length = segment.length();
         if length.is_nan() || length <= MIN_LENGTH {
             return;
         }
+        let feed = feed.max(0.0);
         if self.machine.corner == CornerMode::Smooth {
             let source = match segment {
                 Segment::Arc(a) => Source::Arc(a),
                 Segment::Line(l) => Source::Line(l),
                 _ => return,
             };
-            let (tolerance, exact) = match block.path_mode {
-                PathMode::ExactStop => (self.machine.path_tolerance, true),
-                PathMode::Blend {
-                    tolerance: Some(t), ..
-                } if t > 0.0 => (t, false),
-                PathMode::Blend { .. } => (self.machine.path_tolerance, false),
-            };
+            let exact = matches!(block.path_mode, PathMode::ExactStop);
+            let tolerance = tolerance_of(block.path_mode, self.machine.path_tolerance);
             let mv = Move {
                 source,
                 line: block.line,
-                feed: feed.max(0.0),
+                feed,
                 tolerance,
                 exact,
             };
@@ -379,7 +349,7 @@ impl PathBuilder {
             block: PathBlock {
                 line: block.line,
                 segment,
-                v_feed: feed.max(0.0).min(limits.v_max),
+                v_feed: feed.min(limits.v_max),
                 limits,
                 v_end_max: 0.0,
                 constant_speed: false,
@@ -391,6 +361,26 @@ impl PathBuilder {
         match self.held.take() {
             Some(held) => self.corner(held, next, out),
             None => self.held = Some(next),
+        }
+    }
+
+    /// A stop on the path (M0, M1, M2, …), with a dwell of `seconds` where given.
+    fn stop(&mut self, block: &Block, seconds: Option<f64>, out: &mut Vec<PathBlock>) {
+        self.release(0.0, out);
+        self.smooth.stop(&self.machine, out);
+        if let Some(seconds) = seconds {
+            out.push(PathBlock {
+                line: block.line,
+                segment: Segment::Dwell {
+                    at: block.from,
+                    seconds: seconds.max(0.0),
+                },
+                v_feed: 0.0,
+                limits: self.rest_limits(),
+                v_end_max: 0.0,
+                constant_speed: false,
+                before_transition: false,
+            });
         }
     }
 
@@ -435,77 +425,26 @@ impl PathBuilder {
         let (t_in, t_out) = (unit(g_in.d1), unit(g_out.d1));
         let cos = dot(t_in, t_out);
         let feeds = held.block.v_feed.min(next.block.v_feed);
-        let lines = match (&held.block.segment, &next.block.segment) {
-            (Segment::Line(h), Segment::Line(n)) => Some((*h, *n)),
-            _ => None,
-        };
+        let lines = matches!(
+            (&held.block.segment, &next.block.segment),
+            (Segment::Line(_), Segment::Line(_))
+        );
         let v_end_max = if exact {
             0.0
-        } else if let Some((h, n)) = lines {
-            if 1.0 - cos <= corner::COLLINEAR_EPS {
-                feeds
-            } else {
-                match m.corner {
-                    CornerMode::ExactStop => 0.0,
-                    CornerMode::AccelerationPeriod => corner_feed(t_in, t_out, m).min(feeds),
-                    CornerMode::Circular | CornerMode::Polynomial | CornerMode::Smooth => {
-                        let tol = match held.mode {
-                            PathMode::Blend {
-                                tolerance: Some(t), ..
-                            } if t > 0.0 => t,
-                            _ => m.path_tolerance,
-                        };
-                        // A share below one half leaves a piece of every line between two transitions:
-                        // a constant-speed transition needs a block after it that can stop.
-                        let max_cut =
-                            (TRANSITION_SHARE * held.programmed.min(next.programmed)).min(h.length());
-                        // The line after keeps at least (1 − 2·share) of its length; the
-                        // transition's speed is one that line can always stop from, so the
-                        // look-ahead's window-end stop never has to lower it later.
-                        // Slowing from v to any x < v takes (v + x)/2·T(v − x) ≤ v·T(v) =
-                        // 2·D(v, 0): a speed that stops in half the rest reaches every lower one.
-                        let rest = (1.0 - 2.0 * TRANSITION_SHARE) * next.programmed;
-                        let v_stop = crate::feed::max_entry(m.profile, 0.5 * rest, 0.0, &next.block.limits);
-                        let trans = self.transition(h.end, t_in, t_out, tol, max_cut, feeds.min(v_stop));
-                        match trans {
-                            Some((segment, v)) => {
-                                held.block.segment = Segment::Line(Line {
-                                    start: h.start,
-                                    end: segment.start(),
-                                });
-                                next.block.segment = Segment::Line(Line {
-                                    start: segment.end(),
-                                    end: n.end,
-                                });
-                                held.block.v_end_max = v;
-                                held.block.before_transition = true;
-                                let limits = Limits {
-                                    v_max: v,
-                                    a_max: held.block.limits.a_max.min(next.block.limits.a_max),
-                                    j_max: held.block.limits.j_max.min(next.block.limits.j_max),
-                                    snap_max: m.max_snap,
-                                };
-                                let line = held.block.line;
-                                if held.block.segment.length() > MIN_LENGTH {
-                                    out.push(held.block);
-                                }
-                                out.push(PathBlock {
-                                    line,
-                                    segment,
-                                    v_feed: v,
-                                    limits,
-                                    v_end_max: v,
-                                    constant_speed: true,
-                                    before_transition: false,
-                                });
-                                self.held = Some(next);
-                                return;
-                            }
-                            None => 0.0,
-                        }
-                    }
+        } else if lines && 1.0 - cos <= corner::COLLINEAR_EPS {
+            feeds
+        } else if lines && m.corner == CornerMode::AccelerationPeriod {
+            corner_feed(t_in, t_out, m).min(feeds)
+        } else if lines {
+            if let Some(transition) = self.blend_lines(&mut held, &mut next, t_in, t_out, feeds) {
+                if held.block.segment.length() > MIN_LENGTH {
+                    out.push(held.block);
                 }
+                out.push(transition);
+                self.held = Some(next);
+                return;
             }
+            0.0
         } else if 1.0 - cos <= corner::TANGENT_EPS {
             curvature_change_speed(sub(g_out.d2, g_in.d2), m).min(feeds)
         } else if m.corner == CornerMode::AccelerationPeriod {
@@ -519,6 +458,58 @@ impl PathBuilder {
         held.block.v_end_max = v_end_max;
         out.push(held.block);
         self.held = Some(next);
+    }
+
+    /// The constant-speed transition (circular or polynomial mode) between two lines: both lines
+    /// are cut back to it. None: no transition fits, stop at the corner.
+    fn blend_lines(
+        &self,
+        held: &mut Held,
+        next: &mut Held,
+        t_in: Vec3,
+        t_out: Vec3,
+        feeds: f64,
+    ) -> Option<PathBlock> {
+        let (&Segment::Line(h), &Segment::Line(n)) = (&held.block.segment, &next.block.segment) else {
+            return None;
+        };
+        let m = &self.machine;
+        let tol = tolerance_of(held.mode, m.path_tolerance);
+        // A share below one half leaves a piece of every line between two transitions: a
+        // constant-speed transition needs a block after it that can stop.
+        let max_cut = (TRANSITION_SHARE * held.programmed.min(next.programmed)).min(h.length());
+        // The line after keeps at least (1 − 2·share) of its length; the transition's speed is one
+        // that line can always stop from, so the look-ahead's window-end stop never has to lower it
+        // later. Slowing from v to any x < v takes (v + x)/2·T(v − x) ≤ v·T(v) = 2·D(v, 0): a speed
+        // that stops in half the rest reaches every lower one.
+        let rest = (1.0 - 2.0 * TRANSITION_SHARE) * next.programmed;
+        let v_stop = crate::feed::max_entry(m.profile, 0.5 * rest, 0.0, &next.block.limits);
+        let (segment, v) = self.transition(h.end, t_in, t_out, tol, max_cut, feeds.min(v_stop))?;
+        held.block.segment = Segment::Line(Line {
+            start: h.start,
+            end: segment.start(),
+        });
+        next.block.segment = Segment::Line(Line {
+            start: segment.end(),
+            end: n.end,
+        });
+        held.block.v_end_max = v;
+        held.block.before_transition = true;
+        let limits = Limits {
+            v_max: v,
+            a_max: held.block.limits.a_max.min(next.block.limits.a_max),
+            j_max: held.block.limits.j_max.min(next.block.limits.j_max),
+            snap_max: m.max_snap,
+        };
+        Some(PathBlock {
+            line: held.block.line,
+            segment,
+            v_feed: v,
+            limits,
+            v_end_max: v,
+            constant_speed: true,
+            before_transition: false,
+        })
     }
 
     /// The corner transition of the machine's mode and its constant speed, or None (stop).
@@ -555,6 +546,16 @@ impl PathBuilder {
 // every stage passes Vec3 as plain data (Tick, Block, serde/bincode of the FMU state), they are in
 // the hottest loops (path evaluation every tick, 1 M blocks/s look-ahead) and compile to the same
 // three multiply-adds; a wrapper type would change every record for no gain.
+/// The path tolerance of a block: its G64 P where given and positive, else the machine's.
+fn tolerance_of(mode: PathMode, machine_tolerance: f64) -> f64 {
+    match mode {
+        PathMode::Blend {
+            tolerance: Some(t), ..
+        } if t > 0.0 => t,
+        _ => machine_tolerance,
+    }
+}
+
 pub fn add(a: Vec3, b: Vec3) -> Vec3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
