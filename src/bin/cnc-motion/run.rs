@@ -7,6 +7,7 @@ use cnc_motion::gcode::ProgramSource;
 use cnc_motion::interp::{Differences, Tick};
 use cnc_motion::path::Segment;
 use cnc_motion::servo::AxisState;
+use cnc_motion::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::io::IsTerminal;
@@ -105,6 +106,38 @@ impl Peaks {
     }
 }
 
+/// What the summary reports of the whole run: per axis the larger of the feed law's values and
+/// what the emitted ticks show (finite differences from rest catch steps at corners).
+#[derive(Default)]
+struct Maxima {
+    v: Peaks,
+    a: Peaks,
+    j: Peaks,
+    following_error: Peaks,
+    torque: Peaks,
+    contour: f64,
+    ticks: u64,
+}
+
+impl Maxima {
+    fn take(&mut self, tick: &Tick, emitted: (Vec3, Vec3, Vec3), engine: &Engine) {
+        let (dv, da, dj) = emitted;
+        for (peaks, law, shown) in [
+            (&mut self.v, tick.v, dv),
+            (&mut self.a, tick.a, da),
+            (&mut self.j, tick.j, dj),
+        ] {
+            peaks.take(law);
+            peaks.take(shown);
+        }
+        let axes = engine.axes();
+        self.following_error.take(axes.map(|s| s.following_error));
+        self.torque.take(axes.map(|s| s.motor_torque));
+        self.contour = self.contour.max(engine.contour_error());
+        self.ticks += 1;
+    }
+}
+
 pub fn run(args: &RunArgs) -> ExitCode {
     match run_inner(args) {
         Ok(()) => ExitCode::SUCCESS,
@@ -115,21 +148,36 @@ pub fn run(args: &RunArgs) -> ExitCode {
     }
 }
 
+fn load_machine(path: Option<&str>) -> Result<Machine, String> {
+    match path {
+        Some(path) => {
+            let toml = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+            Machine::from_toml(&toml, path).map_err(|e| e.to_string())
+        }
+        None => Ok(Machine::default()),
+    }
+}
+
+/// A spinner with the line being executed, when stderr is a terminal.
+fn progress_bar() -> Option<ProgressBar> {
+    std::io::stderr().is_terminal().then(|| {
+        let bar = ProgressBar::new_spinner();
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} line {pos} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar
+    })
+}
+
 fn run_inner(args: &RunArgs) -> Result<(), String> {
     // The program is streamed line by line (memory does not grow with its length).
     std::fs::File::open(&args.program).map_err(|e| format!("{}: {e}", args.program))?;
-    let machine = match &args.machine {
-        Some(path) => {
-            let toml = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-            Machine::from_toml(&toml, path).map_err(|e| e.to_string())?
-        }
-        None => Machine::default(),
-    };
+    let machine = load_machine(args.machine.as_deref())?;
     let source = ProgramSource::File(PathBuf::from(&args.program));
     let mut engine = Engine::new(source, &args.program, &machine)
         .map_err(|e| e.to_string())?
         .with_servo(args.servo);
-
     let mut csv = match &args.csv {
         Some(path) => {
             let w = csv::Writer::from_path(path).map_err(|e| format!("{path}: {e}"))?;
@@ -137,53 +185,20 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         }
         None => None,
     };
-
-    let bar = if std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new_spinner();
-        bar.set_style(
-            ProgressStyle::with_template("{spinner} line {pos} {msg}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        Some(bar)
-    } else {
-        None
-    };
-
-    let (mut v, mut a, mut j, mut fe) = (
-        Peaks::default(),
-        Peaks::default(),
-        Peaks::default(),
-        Peaks::default(),
-    );
-    let mut torque = Peaks::default();
-    let mut max_contour: f64 = 0.0;
-    let mut n: u64 = 0;
+    let bar = progress_bar();
+    let mut max = Maxima::default();
     let mut emitted = Differences::new(engine.tick().p, machine.interpolation_period);
     while !engine.finished() && engine.time() < args.max_time {
         let tick = *engine.step().map_err(|e| e.to_string())?;
-        // The larger of the feed law's values and what the ticks show (steps at corners).
-        let (dv, da, dj) = emitted.push(tick.p);
         cnc_motion::config::ranges::check_outputs(&engine).map_err(|m| format!("{}: {m}", args.program))?;
-        v.take(tick.v);
-        a.take(tick.a);
-        j.take(tick.j);
-        v.take(dv);
-        a.take(da);
-        j.take(dj);
-        let axes = engine.axes();
-        fe.take(axes.map(|s| s.following_error));
-        torque.take(axes.map(|s| s.motor_torque));
-        max_contour = max_contour.max(engine.contour_error());
+        max.take(&tick, emitted.push(tick.p), &engine);
         if let Some((path, w)) = csv.as_mut() {
-            let row = CsvRow::new(&tick, &axes);
+            let row = CsvRow::new(&tick, &engine.axes());
             w.serialize(row).map_err(|e| format!("{path}: {e}"))?;
         }
-        n += 1;
-        if let Some(bar) = &bar {
-            if n % 1000 == 0 {
-                bar.set_position(tick.line as u64);
-                bar.set_message(format!("t = {:.3} s", tick.t));
-            }
+        if let Some(bar) = bar.as_ref().filter(|_| max.ticks % 1000 == 0) {
+            bar.set_position(tick.line as u64);
+            bar.set_message(format!("t = {:.3} s", tick.t));
         }
     }
     if let Some(bar) = bar {
@@ -195,6 +210,11 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     if !engine.finished() {
         return Err(not_finished(&engine, &args.program, args.max_time));
     }
+    print_summary(args, &machine, &engine, &max);
+    Ok(())
+}
+
+fn print_summary(args: &RunArgs, machine: &Machine, engine: &Engine, max: &Maxima) {
     let tick = engine.tick();
     let mut summary = serde_json::json!({
         "program": args.program,
@@ -203,18 +223,18 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         "interpolation_period_s": machine.interpolation_period,
         "total_time_s": engine.finish_time().unwrap_or(engine.time()),
         "motion_time_s": engine.motion_time(),
-        "ticks": n,
+        "ticks": max.ticks,
         "path_length_mm": tick.distance / MM,
         "motion_blocks": engine.motion_blocks(),
         "end_position_mm": tick.p.map(|x| x / MM),
-        "max_axis_velocity_mm_s": v.mm(),
-        "max_axis_acceleration_mm_s2": a.mm(),
-        "max_axis_jerk_mm_s3": j.mm(),
+        "max_axis_velocity_mm_s": max.v.mm(),
+        "max_axis_acceleration_mm_s2": max.a.mm(),
+        "max_axis_jerk_mm_s3": max.j.mm(),
     });
     if args.servo {
-        summary["max_following_error_mm"] = serde_json::json!(fe.mm());
-        summary["max_contour_error_mm"] = serde_json::json!(max_contour / MM);
-        summary["max_motor_torque_n_m"] = serde_json::json!(torque.0);
+        summary["max_following_error_mm"] = serde_json::json!(max.following_error.mm());
+        summary["max_contour_error_mm"] = serde_json::json!(max.contour / MM);
+        summary["max_motor_torque_n_m"] = serde_json::json!(max.torque.0);
     }
     if args.json {
         println!("{summary}");
@@ -227,7 +247,6 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
             println!("{key:32} {value}");
         }
     }
-    Ok(())
 }
 
 /// `FILE:LINE:1: not finished after --max-time …: why` for the line being executed.
