@@ -22,6 +22,7 @@ mod budget;
 mod chain;
 mod corner;
 mod hermite;
+mod junction;
 mod line;
 mod merge;
 mod smooth;

@@ -8,7 +8,7 @@
 //!    of the 840D's COMPCURV, but interpolating the programmed points). A span is kept only if
 //!    its Bézier control points — hence the whole span — lie within half the tolerance of its
 //!    programmed chord; otherwise it stays the programmed line.
-//! 2. Junctions. Where two spans do not already join with equal first and second derivatives,
+//! 2. Junctions (junction.rs). Where two spans do not already join with equal first and second derivatives,
 //!    both are cut back by d and a quintic Hermite transition (hermite.rs; eq. 45–52 for two
 //!    lines) joins them: d from the apex distance of eq. 52 at the tolerance, at most half of
 //!    each programmed span, shrunk until the transition stays within the tolerance of the
@@ -20,8 +20,8 @@
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
 
 use super::chain::{Chain, Curve, Piece};
-use super::corner::REVERSAL_COS;
 use super::hermite::{bezier, Hermite, Jet};
+use super::junction::transition;
 use super::{
     add, cross, curve_limits, dot, line_limits, max_bounds, norm, scale, sub, unit, Arc, Line, PathBlock,
     Segment, Shares,
@@ -40,11 +40,6 @@ const SMOOTH_MAX_RATIO: f64 = 4.0;
 /// need no transition.
 const JOINT_D1_EPS: f64 = 1e-9;
 const JOINT_D2_EPS: f64 = 1e-3;
-/// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
-const MAX_SHRINKS: usize = 60;
-const SHRINK: f64 = 0.85;
-/// Samples of a transition checked against the programmed geometry.
-const DEVIATION_SAMPLES: usize = 64;
 /// Share of the tolerance a fitted span may use: a span that needs all of it fits badly (its
 /// curvature swings), and splitting it is faster to run.
 const SPAN_SHARE: f64 = 0.7;
@@ -59,7 +54,7 @@ const RUN_MAX: usize = 1024;
 const CHAIN_MAX_PIECES: usize = 512;
 const CHAIN_SPEED_RATIO: f64 = 0.7;
 /// Shorter pieces are dropped (m).
-const MIN_PIECE: f64 = 1e-12;
+pub(super) const MIN_PIECE: f64 = 1e-12;
 
 /// A programmed move as the builder receives it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -81,7 +76,7 @@ pub enum Source {
 }
 
 impl Source {
-    fn length(&self) -> f64 {
+    pub(super) fn length(&self) -> f64 {
         match self {
             Source::Line(l) => l.length(),
             Source::Arc(a) => a.length(),
@@ -161,10 +156,10 @@ fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
 
 /// A span on its way through stage 2: the piece left of it and the programmed moves at its ends.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize)]
-struct Span {
-    piece: Piece,
-    first: Move,
-    last: Move,
+pub(super) struct Span {
+    pub(super) piece: Piece,
+    pub(super) first: Move,
+    pub(super) last: Move,
 }
 
 impl Span {
@@ -507,7 +502,7 @@ impl Default for SmoothBuilder {
     }
 }
 
-fn jet_at(piece: &Piece, u: f64) -> Jet {
+pub(super) fn jet_at(piece: &Piece, u: f64) -> Jet {
     let g = piece.eval(u);
     Jet {
         p: if u >= piece.length() { piece.end() } else { g.p },
@@ -599,80 +594,8 @@ fn chain_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, length: f64, m: &Mach
 }
 
 /// The limits of a piece (or chain) with bound cells `cells`, of `length`, capped at `v_cap`.
-fn piece_limits(cells: &[[Vec3; 3]], length: f64, v_cap: f64, m: &Machine) -> Limits {
+pub(super) fn piece_limits(cells: &[[Vec3; 3]], length: f64, v_cap: f64, m: &Machine) -> Limits {
     let k = norm(max_bounds(cells)[1]);
     let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
     chain_limits(cells, rho, v_cap, length, m)
-}
-
-/// The limits of transition `h` at `feed` if running through it beats stopping at the corner:
-/// a tiny sharp transition allows so little speed that its time at that speed exceeds the
-/// rest-to-rest time over its length with the axis jerk alone (four phases of T_j, L = 2·J·T_j³).
-fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<Limits> {
-    let mut cells = Vec::new();
-    h.cells(|c| cells.push(c));
-    let limits = piece_limits(&cells, h.length(), feed / h.speed_bound().max(1.0), m);
-    let j = m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min);
-    let t_stop = 4.0 * (h.length() / (2.0 * j)).cbrt();
-    (h.length() < limits.v_max * t_stop).then_some(limits)
-}
-
-/// The transition between `held` and `next`: the cuts on both sides and the curve, or None
-/// (stop) at a reversal or when no cut keeps the tolerance.
-fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, f64, Hermite, Limits)> {
-    let end = jet_at(&held.piece, held.piece.length());
-    let start = jet_at(&next.piece, 0.0);
-    let (t_in, t_out) = (unit(end.d1), unit(start.d1));
-    if dot(t_in, t_out) < REVERSAL_COS {
-        return None;
-    }
-    let tol = held.last.tolerance;
-    // Eq. 52: the apex of the line-line transition lies (3/16)·L·|t_out − t_in| from the corner.
-    let w = norm(sub(t_out, t_in));
-    let apex_cut = if w > 0.0 {
-        16.0 * tol / (3.0 * w)
-    } else {
-        f64::INFINITY
-    };
-    let mut d = apex_cut
-        .min(0.5 * held.last.source.length())
-        .min(0.5 * next.first.source.length())
-        .min(held.piece.length())
-        .min(next.piece.length());
-    // Two lines: eq. 52 puts the largest deviation, |OQ| = tol, at the apex (blend.rs tests).
-    let lines = matches!(
-        (
-            held.piece.curve,
-            next.piece.curve,
-            held.last.source,
-            next.first.source
-        ),
-        (Curve::Line(_), Curve::Line(_), Source::Line(_), Source::Line(_))
-    );
-    for _ in 0..MAX_SHRINKS {
-        if d.is_nan() || d <= MIN_PIECE {
-            return None;
-        }
-        let a = jet_at(&held.piece, held.piece.length() - d);
-        let b = jet_at(&next.piece, d);
-        // Parameter speed 1 at both ends: λ is the cut length on both sides.
-        let h = Hermite::new(a, b, 2.0 * d);
-        if lines || within_tolerance(&h, &held.last.source, &next.first.source, tol) {
-            let feed = held.last.feed.min(next.first.feed);
-            return faster_than_a_stop(&h, feed, m).map(|limits| (d, d, h, limits));
-        }
-        d *= SHRINK;
-    }
-    None
-}
-
-/// Every point of `h` within `tol` of one of the two programmed pieces: samples every λ/N,
-/// each at most tol − σ_max·λ/(2N) away, where σ_max bounds |p'| — no point of the curve is
-/// farther than σ_max·λ/(2N) from a sample.
-fn within_tolerance(h: &Hermite, a: &Source, b: &Source, tol: f64) -> bool {
-    let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
-    (0..=DEVIATION_SAMPLES).all(|k| {
-        let p = h.eval(h.length() * k as f64 / DEVIATION_SAMPLES as f64).p;
-        a.distance(p).min(b.distance(p)) <= tol - guard
-    })
 }
