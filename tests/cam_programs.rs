@@ -359,3 +359,44 @@ fn g64_q_merges_nearly_collinear_moves() {
         assert!((e.tick().p[0] - 0.02).abs() < 1e-12);
     }
 }
+
+#[test]
+fn long_lines_with_rounding_kinks_run_at_the_feed() {
+    // Nearly collinear 10 mm lines, the kinks (1e-5 rad) of 4-decimal output: no stop at any of
+    // them, at a finishing feed and a roughing one (before: a stop at every kink, 1.02× at F600).
+    for feed in [600.0, 3000.0] {
+        let mut prog = Program::new(feed);
+        for k in 1..=8 {
+            prog.line([10.0 * k as f64, if k % 2 == 1 { 0.0001 } else { 0.0 }, 0.0]);
+        }
+        let o = run(&prog, &machine());
+        let ratio = report(&format!("kinked lines, F{feed}"), &prog, &o, feed);
+        assert!(ratio <= 1.005, "F{feed}: {ratio}");
+    }
+}
+
+#[test]
+fn sub_tolerance_jogs_are_absorbed() {
+    // A 0.0001 mm jog (a tenth of a micrometre: CAM rounding) before every 10 mm line of a
+    // square, sideways and along: each would otherwise be a piece of its own with two sharp turns.
+    let square = [[20.0, 0.0], [20.0, 20.0], [0.0, 20.0], [0.0, 0.0]];
+    let mut with_jogs = Program::new(3000.0);
+    let mut plain = Program::new(3000.0);
+    let mut at = [0.0, 0.0];
+    for c in square {
+        for half in [0.5, 1.0] {
+            let p = [at[0] + half * (c[0] - at[0]), at[1] + half * (c[1] - at[1])];
+            with_jogs.line([p[0] + 0.0001, p[1], 0.0]);
+            with_jogs.line([p[0], p[1], 0.0]);
+            plain.line([p[0], p[1], 0.0]);
+        }
+        at = c;
+    }
+    let m = machine();
+    let jogs = run(&with_jogs, &m);
+    let reference = run(&plain, &m);
+    report("square with 0.0001 mm jogs", &with_jogs, &jogs, 3000.0);
+    let ratio = jogs.time / reference.time;
+    println!("square with jogs: {ratio:.4} × the plain square's time");
+    assert!(ratio <= 1.01, "jogs cost {ratio:.4} × the plain square's time");
+}

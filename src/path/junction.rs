@@ -8,8 +8,8 @@ use super::corner::REVERSAL_COS;
 use super::hermite::Hermite;
 use super::smooth::{jet_at, piece_limits, Source, Span, MIN_PIECE};
 use super::{dot, norm, sub, unit};
-use crate::config::Machine;
-use crate::feed::Limits;
+use crate::config::{AxisLimits, Machine};
+use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
 
 /// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -18,15 +18,31 @@ const SHRINK: f64 = 0.85;
 const DEVIATION_SAMPLES: usize = 64;
 
 /// The limits of transition `h` at `feed` if running through it beats stopping at the corner:
-/// a tiny sharp transition allows so little speed that its time at that speed exceeds the
-/// rest-to-rest time over its length with the axis jerk alone (four phases of T_j, L = 2·J·T_j³).
+/// its time at its speed limit is at most the rest-to-rest time over its length within the feed
+/// and the axes' acceleration and jerk (a stop costs at least that; the neighbours' ramps come on
+/// top). A tiny sharp transition allows so little speed that stopping is quicker; a long gentle
+/// one (lines meeting at a rounding kink) runs at the feed.
 fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<Limits> {
     let mut cells = Vec::new();
     h.cells(|c| cells.push(c));
     let limits = piece_limits(&cells, h.length(), feed / h.speed_bound().max(1.0), m);
-    let j = m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min);
-    let t_stop = 4.0 * (h.length() / (2.0 * j)).cbrt();
-    (h.length() < limits.v_max * t_stop).then_some(limits)
+    let slowest = |f: fn(&AxisLimits) -> f64| m.axes.iter().map(f).fold(f64::INFINITY, f64::min);
+    let (a, j) = (slowest(|a| a.max_acceleration), slowest(|a| a.max_jerk));
+    let stop = Limits {
+        v_max: feed,
+        a_max: a,
+        j_max: j,
+        snap_max: m.max_snap,
+    };
+    let t_stop = scurve7::plan(&BlockRequest {
+        length: h.length(),
+        v_in: 0.0,
+        v_out: 0.0,
+        v_feed: feed,
+        limits: stop,
+    })
+    .duration();
+    (h.length() <= limits.v_max * t_stop).then_some(limits)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None

@@ -25,6 +25,7 @@ mod hermite;
 mod junction;
 mod line;
 mod merge;
+mod micro;
 mod smooth;
 
 pub use arc::{
@@ -267,6 +268,7 @@ pub struct PathBuilder {
     held: Option<Held>,
     smooth: SmoothBuilder,
     merger: merge::Merger,
+    micro: micro::MicroMoves,
 }
 
 impl PathBuilder {
@@ -284,6 +286,7 @@ impl PathBuilder {
             held: None,
             smooth: SmoothBuilder::new(),
             merger: merge::Merger::new(),
+            micro: micro::MicroMoves::default(),
         }
     }
 
@@ -338,7 +341,9 @@ impl PathBuilder {
                 tolerance,
                 exact,
             };
-            self.smooth.push(mv, &self.machine, out);
+            for mv in self.micro.take(mv).into_iter().flatten() {
+                self.smooth.push(mv, &self.machine, out);
+            }
             return;
         }
         let limits = match &segment {
@@ -368,7 +373,7 @@ impl PathBuilder {
     /// A stop on the path (M0, M1, M2, …), with a dwell of `seconds` where given.
     fn stop(&mut self, block: &Block, seconds: Option<f64>, out: &mut Vec<PathBlock>) {
         self.release(0.0, out);
-        self.smooth.stop(&self.machine, out);
+        self.stop_smooth(out);
         if let Some(seconds) = seconds {
             out.push(PathBlock {
                 line: block.line,
@@ -390,6 +395,14 @@ impl PathBuilder {
         let mut merger = std::mem::take(&mut self.merger);
         merger.flush(&mut |b: &Block| self.push_merged(b, out));
         self.release(0.0, out);
+        self.stop_smooth(out);
+    }
+
+    /// The smooth mode's stop: held tiny moves run first, so the programmed point is reached.
+    fn stop_smooth(&mut self, out: &mut Vec<PathBlock>) {
+        if let Some(mv) = self.micro.flush() {
+            self.smooth.push(mv, &self.machine, out);
+        }
         self.smooth.stop(&self.machine, out);
     }
 
