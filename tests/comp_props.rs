@@ -154,6 +154,20 @@ fn tool_centre(case: &Case, m: &Machine) -> Option<(Vec<Source>, Vec<Source>)> {
     Some((path, ends))
 }
 
+/// Some point of the exact tool-centre path (entry and exit moves aside) nearer the contour than
+/// `min` (sampled every 1/64 of each element).
+fn gouges_itself(path: &[Source], ends: &[Source], contour: &[Source], min: f64) -> bool {
+    path.iter().filter(|g| !ends.contains(g)).any(|g| {
+        (0..=64).any(|k| {
+            let p = match g {
+                Source::Line(l) => l.eval(l.length() * k as f64 / 64.0).p,
+                Source::Arc(a) => a.eval(a.length() * k as f64 / 64.0).p,
+            };
+            nearest(contour, p) < min
+        })
+    })
+}
+
 fn nearest(geo: &[Source], p: [f64; 3]) -> f64 {
     geo.iter().map(|g| g.distance(p)).fold(f64::INFINITY, f64::min)
 }
@@ -165,6 +179,13 @@ fn check(case: &Case, radius: f64, g451: bool) -> Result<(), TestCaseError> {
     };
     let tol = m.path_tolerance * (1.0 + 1e-6) + 1e-12;
     let r = radius * MM;
+    // A contour that comes back within the radius of itself (two non-adjacent elements) is
+    // gouged by the exact tool-centre path already: the reader checks local gouges only, as
+    // LinuxCNC does, so such a case says nothing about the motion.
+    prop_assume!(
+        !gouges_itself(&path, &ends, &case.contour, r - tol),
+        "global gouge"
+    );
     let mut e = Engine::new(Arc::from(case.text.as_str()), "c.ngc", &m).expect("valid program");
     let mut fd = Differences::new(e.tick().p, m.interpolation_period);
     let mut ticks = 0;
