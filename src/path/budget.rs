@@ -76,14 +76,20 @@ impl Budget<'_> {
         for cell in self.cells {
             for (i, ax) in self.machine.axes.iter().enumerate() {
                 let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
-                let bound = if d1 > NEGLIGIBLE {
+                // Each bound is solved only where it binds at the speed found so far (v only
+                // falls): most cells of a curve do not, and the roots are the costly part.
+                let (a_left, j_left, c) = if d1 > NEGLIGIBLE {
                     let a_left = ax.max_acceleration - d1 * a_min;
-                    let j_left = ax.max_jerk - d1 * self.j_min;
-                    speed_for(d2, 2, a_left).min(jerk_speed(d3, 3.0 * d2 * a_min, j_left))
+                    (a_left, ax.max_jerk - d1 * self.j_min, 3.0 * d2 * a_min)
                 } else {
-                    speed_for(d2, 2, ax.max_acceleration).min(speed_for(d3, 3, ax.max_jerk))
+                    (ax.max_acceleration, ax.max_jerk, 0.0)
                 };
-                v = v.min(bound);
+                if d2 * v * v > a_left {
+                    v = v.min(speed_for(d2, 2, a_left));
+                }
+                if (d3 * v * v + c) * v > j_left {
+                    v = v.min(jerk_speed(d3, c, j_left));
+                }
             }
         }
         let v = v.max(0.0);
