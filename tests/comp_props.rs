@@ -13,7 +13,7 @@
 
 use cnc_motion::config::{Machine, MM};
 use cnc_motion::engine::Engine;
-use cnc_motion::gcode::{Block, Motion, Plane, Reader};
+use cnc_motion::gcode::{Motion, Plane, Reader};
 use cnc_motion::interp::Differences;
 use cnc_motion::path::{Arc as ArcGeo, Line, Source};
 use proptest::prelude::*;
@@ -132,19 +132,11 @@ fn tool_centre(case: &Case, m: &Machine) -> Option<(Vec<Source>, Vec<Source>)> {
     let mut r = Reader::new(Arc::from(case.text.as_str()), "c.ngc", [0.0; 3]).with_machine(m);
     let (mut path, mut ends) = (Vec::new(), Vec::new());
     while let Some(b) = r.next_block().ok()? {
-        let Block {
-            from, motion, line, ..
-        } = b;
-        let geo = match motion {
-            Motion::Linear { to } | Motion::Rapid { to } => Source::Line(Line { start: from, end: to }),
-            Motion::Arc {
-                to,
-                center,
-                plane,
-                clockwise,
-                turns,
-            } => Source::Arc(ArcGeo::from_gcode(from, to, center, plane, clockwise, turns)?),
-            _ => continue,
+        let line = b.line;
+        let geo = match (Source::of_block(&b), b.motion) {
+            (Some(geo), _) => geo,
+            (None, Motion::Arc { .. }) => return None,
+            (None, _) => continue,
         };
         if line == case.entry_line || line == case.exit_line || line < case.entry_line {
             ends.push(geo);

@@ -6,7 +6,8 @@
 use super::chain::Curve;
 use super::corner::REVERSAL_COS;
 use super::hermite::Hermite;
-use super::smooth::{jet_at, piece_limits, Source, Span, MIN_PIECE};
+use super::smooth::{jet_at, piece_limits, Span, MIN_PIECE};
+use super::source::Source;
 use super::{dot, norm, sub, unit};
 use crate::config::{AxisLimits, Machine};
 use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};

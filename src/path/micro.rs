@@ -6,7 +6,8 @@
 //! much), so its tolerance is lowered by that length and every tick stays within the programmed
 //! tolerance.
 
-use super::smooth::{Move, Source};
+use super::smooth::Move;
+use super::source::Source;
 use super::Line;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};

@@ -27,6 +27,7 @@ mod line;
 mod merge;
 mod micro;
 mod smooth;
+mod source;
 
 pub use arc::{
     arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, plane_axes, Arc, Shares,
@@ -36,7 +37,8 @@ pub use chain::{Chain, Curve, Piece};
 pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed};
 pub use hermite::{Hermite, Jet};
 pub use line::{line_limits, Line};
-pub use smooth::{distance_to_segment, Move, SmoothBuilder, Source};
+pub use smooth::{Move, SmoothBuilder};
+pub use source::{distance_to_segment, Source};
 
 /// A point of a segment and its derivatives with respect to the path parameter s:
 /// axis velocity = d1·v, acceleration = d2·v² + d1·a, jerk = d3·v³ + 3·d2·v·a + d1·j.
@@ -299,27 +301,13 @@ impl PathBuilder {
     }
 
     fn push_merged(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
-        let line = |to| {
-            Segment::Line(Line {
-                start: block.from,
-                end: to,
-            })
-        };
-        let (segment, feed) = match block.motion {
-            Motion::Rapid { to } => (line(to), self.machine.max_feed),
-            Motion::Linear { to } => (line(to), block.feed),
-            Motion::Arc {
-                to,
-                center,
-                plane,
-                clockwise,
-                turns,
-            } => match Arc::from_gcode(block.from, to, center, plane, clockwise, turns) {
-                Some(a) => (Segment::Arc(a), block.feed),
-                None => return,
-            },
-            Motion::Dwell { seconds } => return self.stop(block, Some(seconds), out),
-            Motion::Stop(_) => return self.stop(block, None, out),
+        let (segment, feed) = match (Source::of_block(block), block.motion) {
+            (_, Motion::Dwell { seconds }) => return self.stop(block, Some(seconds), out),
+            (_, Motion::Stop(_)) => return self.stop(block, None, out),
+            (None, _) => return,
+            (Some(Source::Line(l)), Motion::Rapid { .. }) => (Segment::Line(l), self.machine.max_feed),
+            (Some(Source::Line(l)), _) => (Segment::Line(l), block.feed),
+            (Some(Source::Arc(a)), _) => (Segment::Arc(a), block.feed),
         };
         let length = segment.length();
         if length.is_nan() || length <= MIN_LENGTH {

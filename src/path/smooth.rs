@@ -22,9 +22,10 @@
 use super::chain::{Chain, Curve, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::transition;
+use super::source::{distance_to_segment, Source};
 use super::{
-    add, cross, curve_limits, dot, line_limits, max_bounds, norm, scale, sub, unit, Arc, Line, PathBlock,
-    Segment, Shares,
+    add, cross, curve_limits, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment,
+    Shares,
 };
 use crate::config::Machine;
 use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
@@ -66,57 +67,6 @@ pub struct Move {
     pub tolerance: f64,
     /// G61 on this move: stop at both its ends.
     pub exact: bool,
-}
-
-/// Programmed geometry: what ticks are measured against.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub enum Source {
-    Line(Line),
-    Arc(Arc),
-}
-
-impl Source {
-    pub(super) fn length(&self) -> f64 {
-        match self {
-            Source::Line(l) => l.length(),
-            Source::Arc(a) => a.length(),
-        }
-    }
-    /// Distance from p to this line segment or arc.
-    pub fn distance(&self, p: Vec3) -> f64 {
-        match self {
-            Source::Line(l) => distance_to_segment(p, l.start, l.end),
-            Source::Arc(a) => distance_to_arc(p, a),
-        }
-    }
-}
-
-pub fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f64 {
-    let ab = sub(b, a);
-    let len2 = dot(ab, ab);
-    let t = if len2 > 0.0 {
-        (dot(sub(p, a), ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    norm(sub(p, add(a, scale(ab, t))))
-}
-
-fn distance_to_arc(p: Vec3, a: &Arc) -> f64 {
-    let rel = sub(p, a.center);
-    let (x, y, z) = (dot(rel, a.e1), dot(rel, a.e2), dot(rel, a.axis));
-    let phi = y.atan2(x).rem_euclid(std::f64::consts::TAU);
-    let h = a.rise / a.sweep;
-    let mut best = norm(sub(p, a.start)).min(norm(sub(p, a.end)));
-    let turns = (a.sweep / std::f64::consts::TAU).floor() as usize;
-    for k in 0..=turns.min(64) {
-        let f = phi + std::f64::consts::TAU * k as f64;
-        if f <= a.sweep {
-            let radial = x.hypot(y) - a.radius;
-            best = best.min(radial.hypot(z - h * f));
-        }
-    }
-    best
 }
 
 /// A vertex's tangent and curvature when it is smooth.

@@ -3,8 +3,8 @@
 //! length is the programmed one (with G41/G42 the tool centre's path differs by the offset);
 //! the machine's feed cap still applies in the planner.
 
-use crate::gcode::{check, Block, Motion};
-use crate::path::{Arc, Line};
+use crate::gcode::{check, Block};
+use crate::path::Source;
 
 /// Path feed (m/s) of `block` taking 1/F minutes; a move of zero length gets the largest feed.
 pub fn feed(block: &Block, f: f64) -> f64 {
@@ -19,16 +19,5 @@ pub fn feed(block: &Block, f: f64) -> f64 {
 /// Length (m) of a line, or of an arc / helix with its extra turns: the path stage's geometry,
 /// so that the move takes the programmed time on the path actually run.
 pub fn length(block: &Block) -> f64 {
-    let from = block.from;
-    match block.motion {
-        Motion::Linear { to } | Motion::Rapid { to } => Line { start: from, end: to }.length(),
-        Motion::Arc {
-            to,
-            center,
-            plane,
-            clockwise,
-            turns,
-        } => Arc::from_gcode(from, to, center, plane, clockwise, turns).map_or(0.0, |a| a.length()),
-        _ => 0.0,
-    }
+    Source::of_block(block).map_or(0.0, |g| g.length())
 }

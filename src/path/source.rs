@@ -1,0 +1,75 @@
+//! Programmed geometry: the line or arc of a G-code block, as the path stage runs it and as
+//! ticks are measured against it.
+
+use super::{add, dot, norm, scale, sub, Arc, Line};
+use crate::gcode::{Block, Motion};
+use crate::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// Programmed geometry: what ticks are measured against.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Source {
+    Line(Line),
+    Arc(Arc),
+}
+
+impl Source {
+    /// The geometry of a programmed line, rapid or arc (None for other blocks and degenerate
+    /// arcs): what the path stage runs and what ticks are measured against.
+    pub fn of_block(block: &Block) -> Option<Source> {
+        let from = block.from;
+        match block.motion {
+            Motion::Linear { to } | Motion::Rapid { to } => Some(Source::Line(Line { start: from, end: to })),
+            Motion::Arc {
+                to,
+                center,
+                plane,
+                clockwise,
+                turns,
+            } => Arc::from_gcode(from, to, center, plane, clockwise, turns).map(Source::Arc),
+            _ => None,
+        }
+    }
+
+    pub fn length(&self) -> f64 {
+        match self {
+            Source::Line(l) => l.length(),
+            Source::Arc(a) => a.length(),
+        }
+    }
+    /// Distance from p to this line segment or arc.
+    pub fn distance(&self, p: Vec3) -> f64 {
+        match self {
+            Source::Line(l) => distance_to_segment(p, l.start, l.end),
+            Source::Arc(a) => distance_to_arc(p, a),
+        }
+    }
+}
+
+pub fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f64 {
+    let ab = sub(b, a);
+    let len2 = dot(ab, ab);
+    let t = if len2 > 0.0 {
+        (dot(sub(p, a), ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    norm(sub(p, add(a, scale(ab, t))))
+}
+
+fn distance_to_arc(p: Vec3, a: &Arc) -> f64 {
+    let rel = sub(p, a.center);
+    let (x, y, z) = (dot(rel, a.e1), dot(rel, a.e2), dot(rel, a.axis));
+    let phi = y.atan2(x).rem_euclid(std::f64::consts::TAU);
+    let h = a.rise / a.sweep;
+    let mut best = norm(sub(p, a.start)).min(norm(sub(p, a.end)));
+    let turns = (a.sweep / std::f64::consts::TAU).floor() as usize;
+    for k in 0..=turns.min(64) {
+        let f = phi + std::f64::consts::TAU * k as f64;
+        if f <= a.sweep {
+            let radial = x.hypot(y) - a.radius;
+            best = best.min(radial.hypot(z - h * f));
+        }
+    }
+    best
+}
