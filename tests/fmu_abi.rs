@@ -400,6 +400,34 @@ fn extreme_parameters_are_refused_through_the_c_abi() {
     fmu.free(c);
 }
 
+/// Run `text` through the FMU's `program` string and the library's engine side by side, 1 ms
+/// steps until the FMU says finished: the command position on `axis` equal at every tick.
+/// Returns the instance (still to be freed) and the lowest position seen on that axis.
+fn run_beside_the_engine(fmu: &Fmu, name: &str, text: &str, axis: usize) -> (Component, f64) {
+    let c = fmu.instantiate(name);
+    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
+    let finished_vr = fmu.vr("status.finished");
+    let machine = cnc_motion::config::Machine::default();
+    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
+        .unwrap()
+        .with_servo(true);
+    let position = format!("{}.command.position", ["x", "y", "z"][axis]);
+    let (mut n, mut done, mut lowest) = (0, 0, 0.0_f64);
+    while done == 0 {
+        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
+        engine.advance(1e-3).unwrap();
+        n += 1;
+        let p = fmu.real(c, &position);
+        assert_eq!(p, engine.tick().p[axis]);
+        lowest = lowest.min(p);
+        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
+        assert!(n < 200_000);
+    }
+    (c, lowest)
+}
+
 /// Issue 14 through the FMU's `program` string: cutter compensation with the radius in the word
 /// (LinuxCNC "G41.1, G42.1"), work offset G10 L2 (LinuxCNC "G10 L2"), G92 and block delete run
 /// through the C ABI exactly as through the library, and the tool centre leaves the contour by
@@ -409,26 +437,7 @@ fn compensated_program_through_the_program_string_equals_the_engine() {
     let text = "G21 G90 G17 F3000\nG10 L2 P1 X1\n/G0 X50\nG0 X-1 Y0\nG42.1 D4 G1 X9 Y0\nX29\n\
                 G3 X39 Y10 R10\nG1 Y30\nX9\nG40 X-1 Y-1\nG92 X0 Y0\nG0 X1\nM2\n";
     let fmu = Fmu::load();
-    let c = fmu.instantiate("comp");
-    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
-    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
-    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
-    let finished_vr = fmu.vr("status.finished");
-    let machine = cnc_motion::config::Machine::default();
-    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
-        .unwrap()
-        .with_servo(true);
-    let (mut n, mut done, mut y_min) = (0, 0, 0.0_f64);
-    while done == 0 {
-        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
-        engine.advance(1e-3).unwrap();
-        n += 1;
-        let y = fmu.real(c, "y.command.position");
-        assert_eq!(y, engine.tick().p[1]);
-        y_min = y_min.min(y);
-        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
-        assert!(n < 200_000);
-    }
+    let (c, y_min) = run_beside_the_engine(&fmu, "comp", text, 1);
     // Within the default G64 path tolerance (0.01 mm) of the blended corners.
     assert!(
         (y_min + 0.002).abs() < 1e-5,
@@ -449,26 +458,7 @@ fn new_words_through_the_program_string_equal_the_engine() {
                 /G0 X99\nG0 X[#1 + 1] Y SIN[90]\nG81 G98 X5 Y5 Z-#<depth> R1 F600\nX8\nG80\nM1\n\
                 G83 G99 X10 Y10 Z-3 R1 Q1\nG80 G49\nG53 G0 Z5\nG28\nM2\n";
     let fmu = Fmu::load();
-    let c = fmu.instantiate("words");
-    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
-    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
-    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
-    let finished_vr = fmu.vr("status.finished");
-    let machine = cnc_motion::config::Machine::default();
-    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
-        .unwrap()
-        .with_servo(true);
-    let (mut n, mut done, mut z_min) = (0, 0, 0.0_f64);
-    while done == 0 {
-        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
-        engine.advance(1e-3).unwrap();
-        n += 1;
-        let z = fmu.real(c, "z.command.position");
-        assert_eq!(z, engine.tick().p[2]);
-        z_min = z_min.min(z);
-        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
-        assert!(n < 200_000);
-    }
+    let (c, z_min) = run_beside_the_engine(&fmu, "words", text, 2);
     // G43.1 Z1 lifts every programmed Z by 1 mm: G83's bottom Z−3 is machine Z−2.
     assert!((z_min + 0.002).abs() < 1e-9, "{z_min}");
     let end = ["x", "y", "z"].map(|a| fmu.real(c, &format!("{a}.command.position")));
@@ -485,24 +475,7 @@ fn o_words_through_the_program_string_equal_the_engine() {
                 o101 while [#1 LT 5]\no<tooth> call [#1 / 10]\n#1 = [#1 + 1]\no101 endwhile\n\
                 o102 repeat [2]\nG91 G1 Y0.5\no102 endrepeat\nG90\nG93 G1 X2 F60\nG94 G1 X1 F3000\nM2\n";
     let fmu = Fmu::load();
-    let c = fmu.instantiate("owords");
-    assert_eq!(fmu.init(c, Some(text)), OK, "{}", fmu.last_log());
-    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
-    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
-    let finished_vr = fmu.vr("status.finished");
-    let machine = cnc_motion::config::Machine::default();
-    let mut engine = cnc_motion::engine::Engine::new(text, "program", &machine)
-        .unwrap()
-        .with_servo(true);
-    let (mut n, mut done) = (0, 0);
-    while done == 0 {
-        assert_eq!(unsafe { step(c, n as f64 * 1e-3, 1e-3, 1) }, OK);
-        engine.advance(1e-3).unwrap();
-        n += 1;
-        assert_eq!(fmu.real(c, "y.command.position"), engine.tick().p[1]);
-        assert_eq!(unsafe { get_bool(c, &finished_vr, 1, &mut done) }, OK);
-        assert!(n < 200_000);
-    }
+    let (c, _) = run_beside_the_engine(&fmu, "owords", text, 1);
     // Last tooth at Y 0.4, then two G91 steps of 0.5, out to X2 (G93) and back: (1, 1.4).
     let end = ["x", "y"].map(|a| fmu.real(c, &format!("{a}.command.position")));
     assert!(
