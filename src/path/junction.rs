@@ -8,8 +8,8 @@ use super::corner::REVERSAL_COS;
 use super::hermite::Hermite;
 use super::smooth::{jet_at, piece_limits, Span, MIN_PIECE};
 use super::source::Source;
-use super::{dot, norm, sub, unit};
-use crate::config::{AxisLimits, Machine};
+use super::{dot, norm, slowest_axis, sub, unit};
+use crate::config::Machine;
 use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
 
 /// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
@@ -27,20 +27,12 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<Limits> {
     let mut cells = Vec::new();
     h.cells(|c| cells.push(c));
     let limits = piece_limits(&cells, h.length(), feed / h.speed_bound().max(1.0), m);
-    let slowest = |f: fn(&AxisLimits) -> f64| m.axes.iter().map(f).fold(f64::INFINITY, f64::min);
-    let (a, j) = (slowest(|a| a.max_acceleration), slowest(|a| a.max_jerk));
-    let stop = Limits {
-        v_max: feed,
-        a_max: a,
-        j_max: j,
-        snap_max: m.max_snap,
-    };
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,
         v_out: 0.0,
         v_feed: feed,
-        limits: stop,
+        limits: slowest_axis(m, feed),
     })
     .duration();
     (h.length() <= limits.v_max * t_stop).then_some(limits)

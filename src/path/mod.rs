@@ -10,7 +10,7 @@
 //! speed; otherwise the seed-003 corner feed (an arc cannot be trimmed, so no transition is
 //! inserted). Dwell and stop blocks stop the path.
 
-use crate::config::{CornerMode, Machine};
+use crate::config::{AxisLimits, CornerMode, Machine};
 use crate::feed::Limits;
 use crate::gcode::{Block, Motion, PathMode};
 use crate::Vec3;
@@ -403,17 +403,7 @@ impl PathBuilder {
 
     /// Limits for blocks that do not move (dwell): the slowest axis.
     fn rest_limits(&self) -> Limits {
-        let m = &self.machine;
-        Limits {
-            v_max: m.max_feed,
-            a_max: m
-                .axes
-                .iter()
-                .map(|a| a.max_acceleration)
-                .fold(f64::INFINITY, f64::min),
-            j_max: m.axes.iter().map(|a| a.max_jerk).fold(f64::INFINITY, f64::min),
-            snap_max: m.max_snap,
-        }
+        slowest_axis(&self.machine, self.machine.max_feed)
     }
 
     /// Decide the junction between `held` and `next`; emit `held` (and a transition if any).
@@ -548,6 +538,18 @@ impl PathBuilder {
 // every stage passes Vec3 as plain data (Tick, Block, serde/bincode of the FMU state), they are in
 // the hottest loops (path evaluation every tick, 1 M blocks/s look-ahead) and compile to the same
 // three multiply-adds; a wrapper type would change every record for no gain.
+/// Limits at `v_max` with the acceleration and jerk of the slowest axis (what holds whichever
+/// way the path points).
+fn slowest_axis(m: &Machine, v_max: f64) -> Limits {
+    let slowest = |f: fn(&AxisLimits) -> f64| m.axes.iter().map(f).fold(f64::INFINITY, f64::min);
+    Limits {
+        v_max,
+        a_max: slowest(|a| a.max_acceleration),
+        j_max: slowest(|a| a.max_jerk),
+        snap_max: m.max_snap,
+    }
+}
+
 /// The path tolerance of a block: its G64 P where given and positive, else the machine's.
 fn tolerance_of(mode: PathMode, machine_tolerance: f64) -> f64 {
     match mode {
