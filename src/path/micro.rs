@@ -23,8 +23,9 @@ pub struct MicroMoves {
 
 #[derive(Clone, Copy, Debug, Serialize, Deserialize)]
 struct Pending {
-    /// Where the first tiny move began (the end of the last move run).
+    /// Where the first tiny move began (the end of the last move run) and the last one ends.
     start: Vec3,
+    end: Vec3,
     /// The last tiny move, as programmed.
     last: Move,
     /// Their length added up.
@@ -44,6 +45,7 @@ impl MicroMoves {
             let start = self.pending.map_or(line.start, |p| p.start);
             self.pending = Some(Pending {
                 start,
+                end: line.end,
                 last: mv,
                 absorbed: total,
             });
@@ -74,12 +76,9 @@ impl MicroMoves {
     /// so that the programmed end point is reached.
     pub fn flush(&mut self) -> Option<Move> {
         let p = self.pending.take()?;
-        let Source::Line(last) = p.last.source else {
-            return Some(p.last);
-        };
         let source = Source::Line(Line {
             start: p.start,
-            end: last.end,
+            end: p.end,
         });
         let tolerance = p.last.tolerance - p.absorbed;
         Some(Move {
