@@ -1,4 +1,4 @@
-//! Fuzz harness (issue 11): mutates the corpus programs (../shared/corpus/*.ngc,
+//! Fuzz harness (issue 11): mutates the corpus programs (corpus/*.ngc,
 //! resources/default.ngc) and machine files, runs each case through the library with a bounded
 //! number of ticks, and sorts the outcome:
 //!
@@ -67,9 +67,9 @@ fn corpus() -> Vec<(String, String)> {
         "seed003_pocket_g41.ngc".to_string(),
         include_str!("../examples/seed003_pocket_g41.ngc").to_string(),
     ));
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/corpus");
     let mut paths: Vec<_> = std::fs::read_dir(dir)
-        .expect("../shared/corpus beside the clone")
+        .expect("corpus beside the clone")
         .flatten()
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|x| x == "ngc"))
@@ -169,7 +169,7 @@ fn mutate(text: &mut String, rng: &mut Rng) {
 /// The machine file of a case: the corpus machine or an empty one, mutated a few times, or a
 /// key of the table set to an extreme value.
 fn machine_text(rng: &mut Rng) -> String {
-    let dmu = include_str!("../../shared/corpus/dmu50_840d.toml");
+    let dmu = include_str!("../corpus/dmu50_840d.toml");
     let mut text = if rng.below(2) == 0 {
         dmu.to_string()
     } else {
@@ -327,7 +327,7 @@ fn mutated_corpus_programs_and_machines() {
 
 #[test]
 fn harness_classifies_known_cases() {
-    let dmu = include_str!("../../shared/corpus/dmu50_840d.toml");
+    let dmu = include_str!("../corpus/dmu50_840d.toml");
     for (_, text) in corpus() {
         assert_eq!(run_case(&text, dmu).0, Outcome::Finished, "{text}");
     }

@@ -189,7 +189,7 @@ fn refusals_name_the_place() {
 
 #[test]
 fn corpus_programs_read_to_the_end() {
-    let corpus = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus");
+    let corpus = concat!(env!("CARGO_MANIFEST_DIR"), "/corpus");
     for name in ["pessoles_linear.ngc", "seed003_pocket_compensated.ngc"] {
         let text = std::fs::read_to_string(format!("{corpus}/{name}")).unwrap();
         let n = validate(Arc::from(text), name).unwrap_or_else(|e| panic!("{e}"));

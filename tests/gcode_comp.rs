@@ -37,8 +37,8 @@ fn ends(blocks: &[Block]) -> Vec<[f64; 3]> {
 /// tool-centre path is the seed's interpreted program vertex by vertex, within 1e-3 mm.
 #[test]
 fn seed003_pocket_matches_the_interpreted_tool_centre_path() {
-    let program = std::fs::read_to_string("../shared/corpus/seed003_pocket.txt").unwrap();
-    let target = std::fs::read_to_string("../shared/corpus/seed003_pocket_interpreted.txt").unwrap();
+    let program = std::fs::read_to_string("corpus/seed003_pocket.txt").unwrap();
+    let target = std::fs::read_to_string("corpus/seed003_pocket_interpreted.txt").unwrap();
     let m = machine("cutter_corner = \"extension\"\n[tool.1]\nradius_mm = 5\n");
     let got = ends(&run(&program, &m).unwrap());
     // Columns: N type comp plane F X Y Z I J K R; every G0/G1/G2/G3 row is a vertex.
@@ -148,7 +148,7 @@ fn outside_corners_by_arc_or_extension() {
 /// about the programmed corners, beside its two programmed arcs (offset to radius 30 and 20).
 #[test]
 fn seed003_with_transition_arcs() {
-    let program = std::fs::read_to_string("../shared/corpus/seed003_pocket.txt").unwrap();
+    let program = std::fs::read_to_string("corpus/seed003_pocket.txt").unwrap();
     let a = arcs(&program, "[tool.1]\nradius_mm = 5\n");
     let radii: Vec<f64> = a.iter().map(|x| (x.1 * 1e6).round() / 1e6).collect();
     assert_eq!(radii, vec![5.0, 30.0, 20.0, 5.0, 5.0, 5.0, 5.0]);
@@ -203,7 +203,7 @@ fn gouges_are_located_errors() {
 /// Seed 003's example through the whole engine: it runs to the end, at the programmed exit.
 #[test]
 fn seed003_runs_through_the_engine() {
-    let program = std::fs::read_to_string("../shared/corpus/seed003_pocket.txt").unwrap();
+    let program = std::fs::read_to_string("corpus/seed003_pocket.txt").unwrap();
     let m = machine("[tool.1]\nradius_mm = 5\n");
     let mut e = cnc_motion::engine::Engine::new(program.as_str(), "seed003_pocket.txt", &m).unwrap();
     let mut n = 0;
@@ -341,7 +341,7 @@ fn compensation_in_the_xz_plane() {
 /// (the look-ahead of the compensation is part of the state; FMI 2.0 fmi2GetFMUstate).
 #[test]
 fn engine_state_round_trip_during_compensation() {
-    let program = std::fs::read_to_string("../shared/corpus/seed003_pocket.txt").unwrap();
+    let program = std::fs::read_to_string("corpus/seed003_pocket.txt").unwrap();
     let m = machine("[tool.1]\nradius_mm = 5\n");
     let new = || cnc_motion::engine::Engine::new(program.as_str(), "p", &m).unwrap();
     let mut a = new();

@@ -61,7 +61,7 @@ fn machine_file_values_out_of_range_are_located_at_the_value() {
         "m.toml:1:1: servo.y.peak_torque_n_m: must not be below rated_torque_n_m"
     );
     // The corpus machine and every bound itself are accepted.
-    let dmu = std::fs::read_to_string("../shared/corpus/dmu50_840d.toml").unwrap();
+    let dmu = std::fs::read_to_string("corpus/dmu50_840d.toml").unwrap();
     Machine::from_toml(&dmu, "dmu50_840d.toml").unwrap();
     Machine::from_toml(
         "interpolation_period_s = 0.1\nlookahead_blocks = 2\n[axis.x]\nmax_jerk_mm_s3 = 1e9\n",

@@ -16,7 +16,7 @@ const TABLE2_MM_MIN: [f64; 7] = [71.0, 256.0, 150.0, 193.0, 161.0, 196.0, 126.0]
 
 /// Time from the first programmed point (end of the G0) to the last, and the transition feeds.
 fn run(machine_file: &str) -> (f64, Vec<f64>) {
-    let text = std::fs::read_to_string("../shared/corpus/pessoles_linear.ngc").expect("corpus");
+    let text = std::fs::read_to_string("corpus/pessoles_linear.ngc").expect("corpus");
     let toml = std::fs::read_to_string(machine_file).expect("machine file");
     let machine = Machine::from_toml(&toml, machine_file).expect("valid machine");
     let mut e = Engine::new(Arc::from(text.as_str()), "pessoles_linear.ngc", &machine).unwrap();
@@ -72,7 +72,7 @@ fn dmu50_with_the_transition_jerk_within_one_percent() {
 
 #[test]
 fn dmu50_with_the_axis_jerk_only() {
-    let (ms, feeds) = run("../shared/corpus/dmu50_840d.toml");
+    let (ms, feeds) = run("corpus/dmu50_840d.toml");
     let err = (ms - MEASURED_MS) / MEASURED_MS;
     println!(
         "J 40 m/s³: {ms:.0} ms ({:+.2} %), transition feeds {feeds:.1?} mm/min, RMS {:.1}",

@@ -11,7 +11,7 @@ use std::sync::Arc;
 fn peaks(kind: ProfileKind) -> (f64, f64) {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../shared/corpus/seed003_pocket_compensated.ngc"
+        "/corpus/seed003_pocket_compensated.ngc"
     );
     let text = std::fs::read_to_string(path).expect("corpus file");
     let machine = Machine {

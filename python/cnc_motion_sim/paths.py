@@ -1,5 +1,5 @@
 """Where the project's files are: the clone (this package is installed editable from its
-`python/` folder), the FMUs `make fmu` writes, the SSP, the default program and ../shared."""
+`python/` folder), the FMUs `make fmu` writes, the SSP, the default program and the corpus."""
 from __future__ import annotations
 
 import os
@@ -11,12 +11,10 @@ CNC_FMU = FMU_DIR / "CncMotion.fmu"
 STRUCTURE_FMU = FMU_DIR / "MachineStructure.fmu"
 SSP = ROOT / "examples" / "cosim.ssp"
 DEFAULT_PROGRAM = ROOT / "resources" / "default.ngc"
-# CI puts ../shared beside the clone; a git worktree may sit one level deeper.
-SHARED = next((p / "shared" for p in (ROOT.parent, ROOT.parent.parent) if (p / "shared" / "corpus").is_dir()),
-              ROOT.parent / "shared")
+CORPUS = ROOT / "corpus"
 CLI = ROOT / os.environ.get("CARGO_TARGET_DIR", "target") / "release" / "cnc-motion"
 
 
 def corpus_programs() -> list[pathlib.Path]:
-    """The G-code programs of ../shared/corpus."""
-    return sorted((SHARED / "corpus").glob("*.ngc"))
+    """The G-code programs of the corpus (corpus/README.md says where each comes from)."""
+    return sorted(CORPUS.glob("*.ngc"))

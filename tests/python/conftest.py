@@ -8,7 +8,7 @@ import subprocess
 import pytest
 
 from cnc_motion_sim import Unpacked, profiles as fmu_profiles
-from cnc_motion_sim.paths import CLI, CNC_FMU, ROOT, SHARED, SSP, STRUCTURE_FMU
+from cnc_motion_sim.paths import CLI, CNC_FMU, CORPUS, ROOT, SSP, STRUCTURE_FMU
 
 
 @pytest.fixture(scope="session")
@@ -17,8 +17,8 @@ def root():
 
 
 @pytest.fixture(scope="session")
-def shared():
-    return SHARED
+def corpus():
+    return CORPUS
 
 
 @pytest.fixture(scope="session")

@@ -2,7 +2,7 @@
 import json
 import subprocess
 
-from cnc_motion_sim.paths import ROOT, SHARED
+from cnc_motion_sim.paths import CORPUS, ROOT
 
 
 def run(cli, *args):
@@ -22,15 +22,15 @@ def test_trapezoid_profile_matches_closed_form(cli):
 
 
 def test_run_pessoles_summary(cli):
-    res = run(cli, "run", str(SHARED / "corpus" / "pessoles_linear.ngc"),
-              "--machine", str(SHARED / "corpus" / "dmu50_840d.toml"), "--json")
+    res = run(cli, "run", str(CORPUS / "pessoles_linear.ngc"),
+              "--machine", str(CORPUS / "dmu50_840d.toml"), "--json")
     assert res.returncode == 0, res.stderr
     out = json.loads(res.stdout)
     for key in ["total_time_s", "path_length_mm", "motion_blocks", "end_position_mm",
                 "max_axis_velocity_mm_s", "max_axis_acceleration_mm_s2", "max_axis_jerk_mm_s3"]:
         assert key in out
     # The last programmed point of the corpus file, to 1e-9 mm.
-    last = [l for l in (SHARED / "corpus" / "pessoles_linear.ngc").read_text().splitlines()
+    last = [l for l in (CORPUS / "pessoles_linear.ngc").read_text().splitlines()
             if l.startswith("G1")][-1]
     want = {w[0]: float(w[1:]) for w in last.split() if w[0] in "XYZ"}
     for i, axis in enumerate("XYZ"):

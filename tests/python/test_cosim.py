@@ -144,11 +144,11 @@ def test_ecos_equals_own_master(own, ssp, structure):
     assert moving >= 2, "the frame accelerates along at least two axes in the first 1.5 s"
 
 
-def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp, shared):
+def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp, corpus):
     """Ecos on a real CAM program (Pessoles' linear path, its first 3 s: the rapid and five cutting moves) with the trapezoid law chosen
     through the Integer twin machine.profileIndex, two-way with 1 kg on the frame: every output
     without direct feed-through bit for bit as the own master setting the Enumeration."""
-    program = (shared / "corpus" / "pessoles_linear.ngc").read_text()
+    program = (corpus / "pessoles_linear.ngc").read_text()
     stop = 3.0
     own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"program": program, "machine.profile": "trapezoid"},
                               structure_params=STABLE, stop_time=stop)

@@ -26,7 +26,7 @@ def limits(cnc):
 
 
 def test_corpus_is_there():
-    assert len(CORPUS_PROGRAMS) >= 2, "../shared/corpus/*.ngc missing"
+    assert len(CORPUS_PROGRAMS) >= 2, "corpus/*.ngc missing"
 
 
 _cache = {}
