@@ -82,3 +82,33 @@ lint:
 
 clean:
 	rm -rf out target/fmu examples/cosim.ssp
+
+# --- win64 in the same FMUs (issue 18): the two cdylibs cross-compiled for Windows with Debian's
+# mingw-w64 and tested under wine64 (tests/python/test_fmu_win64.py, harness in tests/c/).
+# Self-contained block: `fmu` and `system-deps` gain prerequisites here.
+WIN64_TARGET := x86_64-pc-windows-gnu
+WIN64_DIR    := $(or $(CARGO_TARGET_DIR),target)/$(WIN64_TARGET)/release
+WIN64_DLLS   := $(WIN64_DIR)/cnc_motion.dll $(WIN64_DIR)/machine_structure.dll
+# file:Debian package, installed with apt-get where the file is missing (Debian's wine64 puts its
+# loader in /usr/lib/wine, off the PATH).
+CROSS_DEBS   := /usr/bin/x86_64-w64-mingw32-gcc:gcc-mingw-w64-x86-64 /usr/lib/wine/wine64:wine64
+HARNESS_DIR  := target/harness
+
+.PHONY: win64 system-deps-cross harness
+
+fmu: win64
+system-deps: system-deps-cross
+
+win64: system-deps-cross
+	$(CARGO) build --release --lib --target $(WIN64_TARGET) -p cnc-motion -p machine-structure
+
+system-deps-cross:
+	@missing=; for pair in $(CROSS_DEBS); do file=$${pair%%:*}; \
+	  [ -x "$$file" ] || missing="$$missing $${pair#*:}"; done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing$$missing"; apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \
+	  else echo "missing:$$missing: run 'sudo apt-get install$$missing' (win64 cross build and test)" >&2; exit 1; fi; \
+	fi
+	@rustup target list --installed | grep -qx '$(WIN64_TARGET)' || rustup target add $(WIN64_TARGET)

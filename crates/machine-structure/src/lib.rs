@@ -87,22 +87,30 @@ enum Slot {
 }
 
 const NO: Option<f64> = None;
-const ZERO: Option<f64> = Some(0.0);
+/// Declared ranges: the ones `ranges` enforces (one source).
+const fn lo(range: (f64, f64)) -> Option<f64> {
+    Some(range.0)
+}
+const fn hi(range: (f64, f64)) -> Option<f64> {
+    Some(range.1)
+}
+use ranges::{COUPLING_MASS_KG as CM, DAMPING as DZ, FREQUENCY_HZ as FHZ, MODAL_MASS_KG as MM};
+const FORCE: (f64, f64) = (-ranges::MAX_DRIVE_FORCE_N, ranges::MAX_DRIVE_FORCE_N);
 
 /// The variables, one row per axis each (see [`fmi2::table::Row`]).
 #[rustfmt::skip]
 const ROWS: &[fmi2::table::Row<Slot>] = &[
-    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 0),   "# mode 1: natural frequency"),
-    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 1),   "# mode 1: damping ratio"),
-    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 2),   "# mode 1: modal mass"),
-    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(1, 0),   "# mode 2: natural frequency"),
-    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(1, 1),   "# mode 2: damping ratio"),
-    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(1, 2),   "# mode 2: modal mass"),
-    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Coupling,     "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
-    ("#.driveForce",      Type::Real, IN,  CONT, "N",    NO,   NO, Slot::Force,        "force of the # drive on the frame"),
-    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,   NO, Slot::Deflection,   "tool-point deflection of the frame along #"),
-    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,   NO, Slot::Acceleration, "frame acceleration along # (direct feed-through of #.driveForce)"),
-    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,   NO, Slot::LoadForce,    "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
+    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   lo(FHZ),   hi(FHZ), Slot::Mode(0, 0),   "# mode 1: natural frequency"),
+    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    lo(DZ),    hi(DZ),  Slot::Mode(0, 1),   "# mode 1: damping ratio"),
+    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   lo(MM),    hi(MM),  Slot::Mode(0, 2),   "# mode 1: modal mass"),
+    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   lo(FHZ),   hi(FHZ), Slot::Mode(1, 0),   "# mode 2: natural frequency"),
+    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    lo(DZ),    hi(DZ),  Slot::Mode(1, 1),   "# mode 2: damping ratio"),
+    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   lo(MM),    hi(MM),  Slot::Mode(1, 2),   "# mode 2: modal mass"),
+    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   lo(CM),    hi(CM),  Slot::Coupling,     "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
+    ("#.driveForce",      Type::Real, IN,  CONT, "N",    lo(FORCE), hi(FORCE), Slot::Force,        "force of the # drive on the frame"),
+    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,        NO,      Slot::Deflection,   "tool-point deflection of the frame along #"),
+    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,        NO,      Slot::Acceleration, "frame acceleration along # (direct feed-through of #.driveForce)"),
+    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,        NO,      Slot::LoadForce,    "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
 ];
 
 /// The table expanded; a = Σ (F/m − 2ζω q̇ − ω² q): each axis' acceleration depends directly on
