@@ -231,15 +231,23 @@ pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
     let mut files = vec![
         ("Cargo.toml".to_string(), cargo.into_bytes()),
         ("fmi2/Cargo.toml".to_string(), fmi2_toml),
-        sources_readme("MachineStructure", "machine_structure"),
+        sources_readme(
+            "MachineStructure",
+            "machine-structure",
+            "machine_structure",
+            env!("CARGO_PKG_RUST_VERSION"),
+        ),
     ];
     files.extend(tree(&root.join("src"), "src")?);
     files.extend(tree(&root.join("../fmi2/src"), "fmi2/src")?);
     Ok(files)
 }
 
-/// Write MachineStructure.fmu from the built shared library `lib`.
-pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
+/// Write MachineStructure.fmu from the built shared libraries (by platform).
+pub fn write_fmu(
+    path: &Path,
+    binaries: Vec<(&'static fmi2::package::Platform, std::path::PathBuf)>,
+) -> Result<(), String> {
     let xml = model_description();
     let doc = fmi2::documentation::<MachineStructureFmu>(
         "<p>Modal model of a machine frame (two modes per direction, exact zero-order-hold \
@@ -247,16 +255,19 @@ pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
          <code>x.deflection</code>, <code>x.acceleration</code>, <code>x.loadForce</code> (back to \
          CncMotion <code>x.loadForce</code> for two-way coupling). Only <code>x.acceleration</code> \
          depends directly on an input (<code>x.driveForce</code>). Defaults: a small mill (45/120 Hz \
-         in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json.</p>",
+         in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json. \
+         Binaries: linux64 and win64; reference result of the default experiment (no input: at rest) \
+         in <code>extra/org.fmi-standard.fmi-ls-ref/</code>; Rust sources in <code>sources/</code>.</p>",
     );
     fmi2::package::write_fmu(
         path,
         &fmi2::package::FmuFiles {
             model_identifier: "MachineStructure",
             model_description: &xml,
-            shared_library: lib,
+            binaries,
             resources: Vec::new(),
             documentation_html: &doc,
+            extra: fmi2::reference::files::<MachineStructureFmu>(None, 10)?,
             sources: sources()?,
         },
     )

@@ -62,6 +62,9 @@ enum Command {
     Package {
         #[arg(long, default_value = "target/fmu/CncMotion.fmu")]
         output: String,
+        /// Platforms whose binaries go in (built beforehand: `make win64` for win64).
+        #[arg(long, default_value = "linux64,win64")]
+        platforms: String,
     },
 }
 
@@ -80,7 +83,7 @@ fn main() -> ExitCode {
             json,
         } => profile(length, v_start, v_end, v_max, a_max, j_max, snap, kind, json),
         Command::Run(args) => run::run(&args),
-        Command::Package { output } => package(&output),
+        Command::Package { output, platforms } => package(&output, &platforms),
     }
 }
 
@@ -195,8 +198,8 @@ fn sample_peaks(p: &Profile) -> [f64; 3] {
     peaks
 }
 
-fn package(output: &str) -> ExitCode {
-    match cnc_motion::package::write_fmu(std::path::Path::new(output)) {
+fn package(output: &str, platforms: &str) -> ExitCode {
+    match cnc_motion::package::write_fmu(std::path::Path::new(output), platforms) {
         Ok(()) => {
             println!("{output}");
             ExitCode::SUCCESS
