@@ -98,6 +98,7 @@ HARNESS_DIR  := target/harness
 
 fmu: win64
 system-deps: system-deps-cross
+test-python: harness
 
 win64: system-deps-cross
 	$(CARGO) build --release --lib --target $(WIN64_TARGET) -p cnc-motion -p machine-structure
@@ -112,3 +113,19 @@ system-deps-cross:
 	  else echo "missing:$$missing: run 'sudo apt-get install$$missing' (win64 cross build and test)" >&2; exit 1; fi; \
 	fi
 	@rustup target list --installed | grep -qx '$(WIN64_TARGET)' || rustup target add $(WIN64_TARGET)
+
+# The C importer of tests/c for Linux (dlopen) and Windows (LoadLibrary, run under wine), and the
+# bcryptprimitives.dll that wine 8 lacks (ProcessPrng, imported by Rust's std), beside the .exe.
+harness: $(HARNESS_DIR)/fmi2_harness $(HARNESS_DIR)/win64/fmi2_harness.exe $(HARNESS_DIR)/win64/bcryptprimitives.dll
+
+$(HARNESS_DIR)/fmi2_harness: tests/c/fmi2_harness.c
+	@mkdir -p $(@D)
+	$(CC) -O2 -Wall -Wextra -o $@ $< -ldl
+
+$(HARNESS_DIR)/win64/fmi2_harness.exe: tests/c/fmi2_harness.c | system-deps-cross
+	@mkdir -p $(@D)
+	x86_64-w64-mingw32-gcc -O2 -Wall -Wextra -o $@ $<
+
+$(HARNESS_DIR)/win64/bcryptprimitives.dll: tests/c/bcryptprimitives.c | system-deps-cross
+	@mkdir -p $(@D)
+	x86_64-w64-mingw32-gcc -O2 -Wall -shared -o $@ $< -ladvapi32
