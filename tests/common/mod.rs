@@ -153,10 +153,15 @@ impl Fmu {
     }
 
     pub fn instantiate(&self, name: &str) -> Component {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/resources");
+        self.instantiate_in(name, std::path::Path::new(dir))
+    }
+
+    /// An instance whose resources folder is `dir`.
+    pub fn instantiate_in(&self, name: &str, dir: &std::path::Path) -> Component {
         let f = sym!(self, "fmi2Instantiate", FnInstantiate);
         let n = CString::new(name).unwrap();
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/resources");
-        let uri = CString::new(format!("file://{dir}")).unwrap();
+        let uri = CString::new(format!("file://{}", dir.display())).unwrap();
         unsafe {
             f(
                 n.as_ptr(),
