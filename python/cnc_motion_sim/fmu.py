@@ -198,11 +198,16 @@ def cnc_outputs(unpacked: Unpacked) -> list[str]:
 
 def run_cnc(unpacked: Unpacked, parameters: Values | None = None, h: float = 1e-3, t_max: float = 120.0,
             after: float = 0.0, inputs: Callable[[float, Slave], None] | None = None,
-            names: Sequence[str] | None = None) -> dict[str, Any]:
+            names: Sequence[str] | None = None,
+            machine_file: str | pathlib.Path | None = None) -> dict[str, Any]:
     """Run CncMotion alone until status.finished (plus `after` seconds); returns {name: array}.
 
-    `inputs(t, slave)` may set inputs before each step (feed hold, override)."""
+    `inputs(t, slave)` may set inputs before each step (feed hold, override). `machine_file`: the
+    CLI's machine file (TOML), given to the FMU's `machineFile` as an absolute path; `parameters`
+    that differ from their start values override its keys."""
     s = Slave(unpacked, "cnc")
+    if machine_file is not None:
+        parameters = {"machineFile": str(pathlib.Path(machine_file).resolve()), **(parameters or {})}
     try:
         s.initialize(parameters)
         names = names or cnc_outputs(unpacked)
