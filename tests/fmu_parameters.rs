@@ -22,15 +22,23 @@ type FnSetBool = FnSetInt;
 /// Set one variable through the C ABI by its type; the status.
 fn set(fmu: &Fmu, c: Component, name: &str, value: &Value) -> c_int {
     let vr = fmu.vr(name);
-    unsafe {
-        match value {
-            Value::Real(x) => sym!(fmu, "fmi2SetReal", FnSetReal)(c, &vr, 1, x),
-            Value::Integer(n) => sym!(fmu, "fmi2SetInteger", FnSetInt)(c, &vr, 1, n),
-            Value::Boolean(b) => sym!(fmu, "fmi2SetBoolean", FnSetBool)(c, &vr, 1, &c_int::from(*b)),
-            Value::String(s) => {
-                let text = CString::new(s.as_str()).unwrap();
-                sym!(fmu, "fmi2SetString", FnSetString)(c, &vr, 1, &text.as_ptr())
-            }
+    match value {
+        Value::Real(x) => {
+            let f = sym!(fmu, "fmi2SetReal", FnSetReal);
+            unsafe { f(c, &vr, 1, x) }
+        }
+        Value::Integer(n) => {
+            let f = sym!(fmu, "fmi2SetInteger", FnSetInt);
+            unsafe { f(c, &vr, 1, n) }
+        }
+        Value::Boolean(b) => {
+            let f = sym!(fmu, "fmi2SetBoolean", FnSetBool);
+            unsafe { f(c, &vr, 1, &c_int::from(*b)) }
+        }
+        Value::String(s) => {
+            let f = sym!(fmu, "fmi2SetString", FnSetString);
+            let text = CString::new(s.as_str()).unwrap();
+            unsafe { f(c, &vr, 1, &text.as_ptr()) }
         }
     }
 }
