@@ -7,9 +7,9 @@ as IEEE-754 bits; the two files must agree:
 - statuses, log messages, step counts, Integers and Booleans: identical;
 - Reals: within 1e-12 of each variable's largest magnitude in the run. They are not all bit-identical:
   the planner's and the drives' sin, cos, atan2, tanh, … come from each platform's C library
-  (glibc on Linux, msvcrt/mingw-w64 on Windows), which round differently in the last bit; the servo
-  loop's gain then carries a 1-ulp difference in a position to ~1e-13 of the torque's range. The
-  largest relative differences seen are printed (about 1e-15 of the column's range).
+  (glibc on Linux, msvcrt/mingw-w64 on Windows), which round differently in the last bit; the drives
+  carry such a difference into their outputs. The largest relative differences seen are printed
+  (about 1e-15 of a column's range; command positions differ by at most an ulp).
 
 The wine prefix lives in target/wine (created once, ~15-60 s, with Mono/Gecko off).
 """
