@@ -306,3 +306,29 @@ fn types_of_the_drive_parameters_come_from_the_servo_table() {
     assert_eq!(kind("y.servo.linearScale"), Type::Boolean);
     assert_eq!(kind("z.servo.kv"), Type::Real);
 }
+
+/// The machine a machine file made is part of the FMU state: a serialized state restores into an
+/// instance that never saw the file (no `machineFile` set, the file not read again) and runs on
+/// with the file's tool table, tick for tick as the original.
+#[test]
+fn a_serialized_state_keeps_the_machine_of_its_machine_file() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let mut a = <CncMotionFmu as Model>::new(None);
+    a.0.machine_file = format!("{root}/examples/machines/seed003_pocket.toml");
+    a.0.program_file = format!("{root}/corpus/seed003_pocket.txt");
+    a.exit_initialization().unwrap();
+    for _ in 0..1500 {
+        a.do_step(1e-3).unwrap();
+    }
+    let bytes = a.serialize();
+    let mut b = <CncMotionFmu as Model>::new(None);
+    b.deserialize(&bytes).unwrap();
+    assert_eq!(b.0.machine.nc.tools.len(), 1);
+    for _ in 0..2000 {
+        a.do_step(1e-3).unwrap();
+        b.do_step(1e-3).unwrap();
+        let (ea, eb) = (a.0.engine.as_ref().unwrap(), b.0.engine.as_ref().unwrap());
+        assert_eq!(ea.tick().p, eb.tick().p);
+        assert_eq!(ea.axes(), eb.axes());
+    }
+}

@@ -221,15 +221,20 @@ pub fn model_description() -> String {
     fmi2::model_description::<MachineStructureFmu>()
 }
 
-/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/) and the fmi2 crate.
+/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/), the fmi2 crate and
+/// the lock file.
 pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
     use fmi2::package::{manifest, sources_readme, tree};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("Cargo.toml")).map_err(|e| format!("Cargo.toml: {e}"))?;
     let cargo = manifest(&text, &[], &[("../fmi2", "fmi2")]) + "\n[workspace]\n";
     let fmi2_toml = std::fs::read(root.join("../fmi2/Cargo.toml")).map_err(|e| format!("fmi2: {e}"))?;
+    // The workspace's lock: the versions the shipped binaries were built with (cargo drops the
+    // entries this smaller workspace does not use).
+    let lock = std::fs::read(root.join("../../Cargo.lock")).map_err(|e| format!("Cargo.lock: {e}"))?;
     let mut files = vec![
         ("Cargo.toml".to_string(), cargo.into_bytes()),
+        ("Cargo.lock".to_string(), lock),
         ("fmi2/Cargo.toml".to_string(), fmi2_toml),
         sources_readme(
             "MachineStructure",
