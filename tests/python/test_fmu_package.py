@@ -31,7 +31,17 @@ def test_sources_are_a_cargo_workspace(fmus, name, crates, tmp_path):
         assert [n for n in names if n.startswith("sources/")] == sorted(n for n in names if n.startswith("sources/"))
         z.extractall(tmp_path, [n for n in names if n.startswith("sources/")])
     src = tmp_path / "sources"
-    assert (src / "README.md").exists() and (src / "src" / "lib.rs").exists()
+    assert (src / "README.md").exists() and (src / "src" / "lib.rs").exists() and (src / "Cargo.lock").exists()
+    # Rust, not C: no SourceFiles declared (an importer must not try to compile them); the README
+    # says how to build each platform, with the declared minimum Rust version.
+    from fmpy import read_model_description
+    md = read_model_description(str(ROOT / "target" / "fmu" / f"{name}.fmu"))
+    assert md.buildConfigurations == []
+    readme = (src / "README.md").read_text()
+    line = next(l for l in (ROOT / "Cargo.toml").read_text().splitlines() if l.startswith("rust-version"))
+    rust_version = line.split('"')[1]
+    assert f"Rust {rust_version} or newer" in readme, readme
+    assert "--target x86_64-pc-windows-gnu" in readme and "binaries/win64/" in readme
     res = subprocess.run(["cargo", "metadata", "--offline", "--no-deps", "--format-version", "1"],
                          cwd=src, capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
