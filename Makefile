@@ -14,6 +14,10 @@ PIP    := pip install --quiet --disable-pip-version-check -c constraints.txt
 # Where the FMUs go into the Python package (package data, not committed).
 PKG_FMU := python/cnc_motion_sim/fmu
 
+# cargo runs its jobs in parallel itself; the targets run in order (the venv's build backend calls
+# `make fmu` again, which must not race a `make fmu` of this run).
+.NOTPARALLEL:
+
 .PHONY: all build fmu demo test test-rust test-python bench lint clean venv venv-full ssp cosim sweep fuzz system-deps
 
 all: build
