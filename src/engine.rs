@@ -118,6 +118,12 @@ impl Engine {
         &self.tick
     }
 
+    /// Bytes of the program the reader has read (ahead of the motion by the look-ahead; an
+    /// O-word loop takes it back): progress through a program file.
+    pub fn program_offset(&self) -> usize {
+        self.reader.offset()
+    }
+
     /// Motion blocks (G0/G1/G2/G3) read so far.
     pub fn motion_blocks(&self) -> u64 {
         self.motion_blocks

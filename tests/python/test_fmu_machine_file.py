@@ -9,13 +9,13 @@ import pytest
 from fmpy.fmi1 import FMICallException
 
 import cnc_motion_sim as sim
-from cnc_motion_sim.paths import CORPUS, ROOT
+from repo import CORPUS, ROOT
 
 POCKET = CORPUS / "seed003_pocket.txt"
 MACHINE = ROOT / "examples" / "machines" / "seed003_pocket.toml"
 
 
-def test_seed003_pocket_with_its_machine_file_ends_where_the_cli_ends(cli, cnc):
+def test_seed003_pocket_with_its_machine_file_ends_where_the_cli_ends(cli: str, cnc: sim.Unpacked) -> None:
     res = subprocess.run([cli, "run", str(POCKET), "--machine", str(MACHINE), "--servo", "--json"],
                          capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
@@ -28,7 +28,7 @@ def test_seed003_pocket_with_its_machine_file_ends_where_the_cli_ends(cli, cnc):
     assert r["t_finished"] == pytest.approx(want["total_time_s"], abs=1e-9)
 
 
-def test_without_its_machine_file_the_pocket_is_refused_with_its_place(cnc):
+def test_without_its_machine_file_the_pocket_is_refused_with_its_place(cnc: sim.Unpacked) -> None:
     s = sim.Slave(cnc, "no-file")
     try:
         with pytest.raises(FMICallException):

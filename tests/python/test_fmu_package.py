@@ -1,14 +1,14 @@
 """Packaging of both FMUs: reproducible archives (the same bytes from the same build), the crate
 sources in sources/ form a Cargo workspace that builds the binary, author/copyright/license."""
+import pathlib
 import json
 import subprocess
 import zipfile
 
 import pytest
 
-from cnc_motion_sim.paths import ROOT
+from repo import BIN, FMU_DIR, ROOT
 
-BIN = ROOT / "target" / "release"
 PACKAGERS = {
     "CncMotion": lambda out: [str(BIN / "cnc-motion"), "package", "--output", str(out)],
     "MachineStructure": lambda out: [str(BIN / "package-machine-structure"), str(out)],
@@ -16,17 +16,19 @@ PACKAGERS = {
 
 
 @pytest.mark.parametrize("name", PACKAGERS)
-def test_repackaging_gives_the_same_bytes(fmus, name, tmp_path):
+def test_repackaging_gives_the_same_bytes(fmus: tuple[pathlib.Path, pathlib.Path], name: str,
+                                          tmp_path: pathlib.Path) -> None:
     """`make fmu` wrote the FMU earlier (other timestamps): packaging again is byte-identical."""
     out = tmp_path / f"{name}.fmu"
     subprocess.run(PACKAGERS[name](out), check=True, capture_output=True)
-    assert out.read_bytes() == (ROOT / "target" / "fmu" / f"{name}.fmu").read_bytes()
+    assert out.read_bytes() == (FMU_DIR / f"{name}.fmu").read_bytes()
 
 
 @pytest.mark.parametrize("name,crates", [("CncMotion", {"cnc-motion", "fmi2"}),
                                          ("MachineStructure", {"machine-structure", "fmi2"})])
-def test_sources_are_a_cargo_workspace(fmus, name, crates, tmp_path):
-    with zipfile.ZipFile(ROOT / "target" / "fmu" / f"{name}.fmu") as z:
+def test_sources_are_a_cargo_workspace(fmus: tuple[pathlib.Path, pathlib.Path], name: str, crates: set[str],
+                                       tmp_path: pathlib.Path) -> None:
+    with zipfile.ZipFile(FMU_DIR / f"{name}.fmu") as z:
         names = z.namelist()
         assert [n for n in names if n.startswith("sources/")] == sorted(n for n in names if n.startswith("sources/"))
         z.extractall(tmp_path, [n for n in names if n.startswith("sources/")])
@@ -52,7 +54,7 @@ def test_sources_are_a_cargo_workspace(fmus, name, crates, tmp_path):
 
 
 @pytest.mark.parametrize("name", PACKAGERS)
-def test_author_copyright_license(fmus, name):
+def test_author_copyright_license(fmus: tuple[pathlib.Path, pathlib.Path], name: str) -> None:
     from fmpy import read_model_description
-    md = read_model_description(str(ROOT / "target" / "fmu" / f"{name}.fmu"))
+    md = read_model_description(str(FMU_DIR / f"{name}.fmu"))
     assert md.author and md.license == "MIT" and md.copyright.startswith("Copyright")

@@ -7,6 +7,7 @@ same numbers: the interpolator's outputs (command, path, status) bit for bit, th
 its own floating-point way, and the sub-stepped drives see step lengths that differ in the last
 bits (seen: 1e-13 of the range; integer time in the engine removes that)."""
 import csv
+import pathlib
 import io
 import xml.etree.ElementTree as ET
 import zipfile
@@ -15,20 +16,20 @@ import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
 
-from cnc_motion_sim.paths import ROOT
+from repo import ROOT
 
 LS = "extra/org.fmi-standard.fmi-ls-ref/"
 
 
 @pytest.mark.parametrize("name", ["CncMotion", "MachineStructure"])
-def test_reference_result_equals_a_fresh_simulation(fmus, name):
+def test_reference_result_equals_a_fresh_simulation(fmus: tuple[pathlib.Path, pathlib.Path], name: str) -> None:
     path = ROOT / "target" / "fmu" / f"{name}.fmu"
     with zipfile.ZipFile(path) as z:
         manifest = ET.fromstring(z.read(LS + "fmi-ls-manifest.xml"))
         assert manifest.get("{http://fmi-standard.org/fmi-ls-manifest}fmi-ls-name") == "org.fmi-standard.fmi-ls-ref"
         related = manifest.find("Related")
-        assert related.get("role") == "result" and related.get("type") == "text/csv"
-        rows = list(csv.reader(io.StringIO(z.read(LS + related.get("source")).decode())))
+        assert related is not None and related.get("role") == "result" and related.get("type") == "text/csv"
+        rows = list(csv.reader(io.StringIO(z.read(LS + related.get("source", "")).decode())))
     header, ref = rows[0], np.array(rows[1:], dtype=float)
     md = read_model_description(str(path))
     outputs = [v.name for v in md.modelVariables if v.causality == "output"]

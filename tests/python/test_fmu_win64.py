@@ -18,10 +18,15 @@ import shutil
 import struct
 import subprocess
 from pathlib import Path
+from typing import Any, Callable
 
 import pytest
 
-from cnc_motion_sim.paths import CORPUS, ROOT
+from cnc_motion_sim import Unpacked
+from repo import CORPUS, ROOT
+
+# One scripted call: an operation and its arguments (see _script).
+Command = tuple[Any, ...]
 
 HARNESS = ROOT / "target" / "harness"
 PREFIX = ROOT / "target" / "wine"
@@ -34,21 +39,22 @@ def _bits(x: float) -> str:
 
 def _wine() -> str:
     for name in ("wine64", "wine"):
-        if shutil.which(name):
-            return shutil.which(name)
+        found = shutil.which(name)
+        if found:
+            return found
     if os.access("/usr/lib/wine/wine64", os.X_OK):
         return "/usr/lib/wine/wine64"
     pytest.fail("wine64 not found: run `make system-deps` (apt-get install wine64)")
 
 
-def _env() -> dict:
+def _env() -> dict[str, str]:
     env = dict(os.environ, WINEPREFIX=str(PREFIX), WINEDEBUG="-all", WINEDLLOVERRIDES="mscoree,mshtml=")
     env.pop("DISPLAY", None)
     return env
 
 
 @pytest.fixture(scope="session")
-def wine():
+def wine() -> str:
     """wine64 with a prefix under target/ and the harness built (`make harness`)."""
     subprocess.run(["make", "-s", "harness"], cwd=ROOT, check=True)
     wine = _wine()
@@ -70,10 +76,10 @@ def _uri(p: Path, windows: bool) -> str:
     return "file:///" + (_windows_path(p).replace("\\", "/") if windows else str(p).lstrip("/"))
 
 
-def _script(md, commands: list) -> str:
+def _script(md: Any, commands: list[Command]) -> str:
     vars = {v.name: v for v in md.modelVariables}
 
-    def vr(name):
+    def vr(name: str) -> int:
         return vars[name].valueReference
 
     lines = [f"guid {md.guid}"]
@@ -103,11 +109,12 @@ def _script(md, commands: list) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _run(wine, unpacked, commands, tmp_path, name):
+def _run(wine: str, unpacked: Unpacked, commands: Callable[[bool], list[Command]], tmp_path: Path,
+         name: str) -> tuple[list[str], list[str]]:
     """The script through linux64 (native harness) and win64 (wine); both output files."""
     md, model = unpacked.md, unpacked.md.coSimulation.modelIdentifier
     resources = Path(unpacked.dir) / "resources"
-    out = {}
+    out: dict[bool, list[str]] = {}
     for windows in (False, True):
         script = tmp_path / f"{name}_{'win64' if windows else 'linux64'}.txt"
         script.write_text(_script(md, commands(windows)))
@@ -127,7 +134,7 @@ def _run(wine, unpacked, commands, tmp_path, name):
     return out[False], out[True]
 
 
-def _compare(linux, windows):
+def _compare(linux: list[str], windows: list[str]) -> tuple[int, float]:
     """Log lines identical; calls: the same status (the scripts differ in their paths); step lines:
     same counts, Integers/Booleans equal, Reals within BOUND of their column's largest magnitude.
     Returns (steps, largest relative difference)."""
@@ -140,16 +147,18 @@ def _compare(linux, windows):
             assert a.split()[:2] == b.split()[:2]
         else:
             assert a == b
-    real = lambda h: struct.unpack(">d", bytes.fromhex(h))[0]  # noqa: E731
+    def real(h: str) -> float:
+        return float(struct.unpack(">d", bytes.fromhex(h))[0])
+
     worst = 0.0
     if steps:
         for col in range(len(steps[0][0])):
-            a = [s[0][col] for s in steps]
-            b = [s[1][col] for s in steps]
-            if len(a[0]) != 16:  # Integer or Boolean
-                assert a == b, f"column {col}"
+            ca = [s[0][col] for s in steps]
+            cb = [s[1][col] for s in steps]
+            if len(ca[0]) != 16:  # Integer or Boolean
+                assert ca == cb, f"column {col}"
                 continue
-            x, y = [real(h) for h in a], [real(h) for h in b]
+            x, y = [real(h) for h in ca], [real(h) for h in cb]
             scale = max(max(abs(v) for v in x), 1e-300)
             diff = max(abs(p - q) for p, q in zip(x, y))
             assert diff <= BOUND * scale, f"column {col}: {diff} of {scale}"
@@ -160,11 +169,11 @@ def _compare(linux, windows):
 POCKET = "seed003_pocket.txt"
 
 
-def test_cnc_motion_win64_equals_linux64(wine, cnc, tmp_path):
+def test_cnc_motion_win64_equals_linux64(wine: str, cnc: Unpacked, tmp_path: Path) -> None:
     h = 1e-3
-    default = lambda windows: [  # noqa: E731
-        ("instantiate", "default"), ("init",), ("record",), ("until", "status.finished", 100000, h),
-        ("terminate",), ("free",)]
+    def default(windows: bool) -> list[Command]:
+        return [("instantiate", "default"), ("init",), ("record",), ("until", "status.finished", 100000, h),
+                ("terminate",), ("free",)]
     linux, windows = _run(wine, cnc, default, tmp_path, "default")
     steps, worst = _compare(linux, windows)
     assert steps > 5000, steps
@@ -173,7 +182,7 @@ def test_cnc_motion_win64_equals_linux64(wine, cnc, tmp_path):
     machine = ROOT / "examples" / "machines" / "seed003_pocket.toml"
     program = CORPUS / POCKET
 
-    def pocket(windows):
+    def pocket(windows: bool) -> list[Command]:
         path = _windows_path(program) if windows else str(program)
         return [("instantiate", "pocket"), ("set", "machineFile", _uri(machine, windows)),
                 ("set", "programFile", path), ("set", "feedOverride", 1.5), ("init",), ("record",),
@@ -184,18 +193,18 @@ def test_cnc_motion_win64_equals_linux64(wine, cnc, tmp_path):
     assert steps > 1000, steps
     print(f"seed 003 pocket with its machine file: {steps} steps, largest relative difference {worst:.1e}")
 
-    relation = lambda windows: [  # noqa: E731
-        ("instantiate", "relation"), ("set", "x.servo.ratedTorque", 3.0), ("init",), ("free",)]
+    def relation(windows: bool) -> list[Command]:
+        return [("instantiate", "relation"), ("set", "x.servo.ratedTorque", 3.0), ("init",), ("free",)]
     linux, windows = _run(wine, cnc, relation, tmp_path, "relation")
     _compare(linux, windows)
     errors = [line for line in windows if line.startswith("log 3 ")]
     assert any("x.servo.peakTorque" in e and "x.servo.ratedTorque" in e for e in errors), windows
 
 
-def test_machine_structure_win64_equals_linux64(wine, structure, tmp_path):
-    commands = lambda windows: [  # noqa: E731
-        ("instantiate", "frame"), ("set", "x.driveForce", 1000.0), ("set", "z.driveForce", -250.0),
-        ("init",), ("record",), ("steps", 2000, 1e-3), ("terminate",), ("free",)]
+def test_machine_structure_win64_equals_linux64(wine: str, structure: Unpacked, tmp_path: Path) -> None:
+    def commands(windows: bool) -> list[Command]:
+        return [("instantiate", "frame"), ("set", "x.driveForce", 1000.0), ("set", "z.driveForce", -250.0),
+                ("init",), ("record",), ("steps", 2000, 1e-3), ("terminate",), ("free",)]
     linux, windows = _run(wine, structure, commands, tmp_path, "structure")
     steps, worst = _compare(linux, windows)
     assert steps == 2000

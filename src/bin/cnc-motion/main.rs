@@ -10,6 +10,7 @@ use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use std::process::ExitCode;
 
 mod run;
+mod summary;
 
 const MM: f64 = 1e-3;
 
