@@ -44,8 +44,10 @@ pub struct NcSetup {
     pub optional_stop: bool,
     pub cutter_corner: CutterCorner,
     pub tools: BTreeMap<u32, Tool>,
-    /// G54 … G59.3 offsets (m), machine = program + offset.
+    /// G54 … G59.3 offsets (m), machine = R·program + offset.
     pub work_offsets: [Vec3; 9],
+    /// G54 … G59.3 rotations R of the XY axes about Z (degrees, G10 L2 R; 0 from the file).
+    pub work_rotation: [f64; 9],
     /// G28 and G30 home positions (m, machine coordinates).
     pub home: [Vec3; 2],
     /// O-word loops: most jumps back (loop passes) in one run of a program.
@@ -85,6 +87,7 @@ impl Default for NcSetup {
             cutter_corner: CutterCorner::Arc,
             tools: BTreeMap::new(),
             work_offsets: [[0.0; 3]; 9],
+            work_rotation: [0.0; 9],
             home: [[0.0; 3]; 2],
             max_loop_iterations: DEFAULT_MAX_LOOP_ITERATIONS,
             inch: false,

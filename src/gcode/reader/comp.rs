@@ -77,6 +77,11 @@ impl Reader {
         Ok(())
     }
 
+    /// Whether G41/G42 is in force.
+    pub(super) fn comp_on(&self) -> bool {
+        self.comp.side != 0.0
+    }
+
     /// Next block after cutter compensation.
     pub(super) fn next_compensated(&mut self) -> Result<Option<Block>, ProgramError> {
         loop {
