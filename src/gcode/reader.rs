@@ -294,6 +294,14 @@ impl Reader {
         self.check_flow_closed()
     }
 
+    /// The line of the opening `%`, if the program has one.
+    fn opening_percent(&self) -> Option<u32> {
+        match self.percent {
+            Percent::Open(line) => Some(line),
+            _ => None,
+        }
+    }
+
     /// `%` lines (LinuxCNC "File Requirements"): true if the line was one and is done with.
     fn percent_line(&mut self, line: u32, raw: &str) -> Result<bool, ProgramError> {
         let text = raw.trim();
