@@ -140,7 +140,8 @@ fn max_time_names_the_line_and_the_reason() {
     assert!(e.starts_with(&want), "{e}");
     let (path, e) = run("slow.ngc", "G21 G1 X10 F0.1\n");
     assert!(
-        e.starts_with(&format!("{path}:1:1: not finished")) && e.contains("feed too low: F0.1 mm/min"),
+        e.starts_with(&format!("{path}:1:1: not finished"))
+            && e.contains("feed too low: 0.1 mm/min along the path"),
         "{e}"
     );
     std::fs::remove_dir_all(&dir).ok();
