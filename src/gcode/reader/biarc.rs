@@ -2,11 +2,14 @@
 //! LinuxCNC's interpreter turns G5, G5.1 and G5.2 into arcs (emccanon `biarc`, the equal-tangent-
 //! length biarc through two points with their tangents), here refined until every piece is
 //! within a tolerance of the curve: a piece whose distance to the curve, measured at
-//! `SAMPLES` points of the curve inside it, exceeds the tolerance is split at its middle
-//! parameter. The result is tangent-continuous (G1) where the curve is.
+//! `SAMPLES` points of the curve inside it, exceeds MEASURED_SHARE of the tolerance is split at
+//! its middle parameter. The result is tangent-continuous (G1) where the curve is.
 
 /// Points of the curve inside a piece at which its distance to the biarc is measured.
 pub const SAMPLES: usize = 16;
+/// The measured distance must be within this share of the tolerance: between the measured
+/// points it can be larger (by 1.4 % on LinuxCNC's NURBS example).
+const MEASURED_SHARE: f64 = 0.75;
 /// Most halvings of one initial piece.
 const MAX_DEPTH: u32 = 40;
 
@@ -210,6 +213,7 @@ fn refine(
     let (p0, p1) = (c.point(a), c.point(b));
     let samples = (1..=SAMPLES).map(|i| c.point(a + (b - a) * i as f64 / (SAMPLES + 1) as f64));
     let start = out.last().map_or(p0, Piece::to);
+    let tol_measured = MEASURED_SHARE * tol;
     if norm(sub(p1, p0)) <= tol && samples.clone().all(|q| norm(sub(q, p0)) <= tol) {
         // A piece shorter than the tolerance: one line (none if it ends where it starts).
         if norm(sub(p1, start)) > 0.0 {
@@ -221,7 +225,7 @@ fn refine(
     if let Some(pair) = biarc(start, t0, p1, t1, tol / 4.0) {
         let fits = samples
             .clone()
-            .all(|q| pair[0].distance(start, q).min(pair[1].distance(pair[0].to(), q)) <= tol);
+            .all(|q| pair[0].distance(start, q).min(pair[1].distance(pair[0].to(), q)) <= tol_measured);
         if fits || depth >= MAX_DEPTH {
             if out.len() + 2 > max {
                 return Err(FitError::TooManyPieces);
