@@ -244,6 +244,10 @@ fn group_zero_codes_run_before_the_motion() {
         error("G4 P1 G10 L2 P1 X0\n"),
         "t.ngc:1:7: two words of the same modal group on one line"
     );
+    // F (step 4) is read before G20 (step 16): F10 here is 10 mm/min, X1 one inch.
+    let b = blocks("G20 G1 X1 F10\n");
+    assert!((b[0].feed - 10.0 * 1e-3 / 60.0).abs() < 1e-15, "{}", b[0].feed);
+    assert!((end_of(&b[0]).unwrap()[0] - 25.4e-3).abs() < 1e-15);
     // A modal G1 is suspended by G92 on a line: the axis words are G92's (no move).
     assert_eq!(
         ends("G1 X1 F100\nG92 X0\nX1\n"),
@@ -381,8 +385,9 @@ fn messages_say_what_is_meant() {
         "{e}"
     );
     assert!(start.elapsed().as_secs() < 5);
-    // The same in G94: 100 mm at F1e-6 mm/min.
+    // The same in G94: 100 mm at F1e-6 mm/min, and a drilling cycle's feed.
     assert!(error("G1 X100 F0.000001\n").contains("longer than the longest move"));
+    assert!(error("G81 X0 Y0 Z-10 R1 F0.000001\n").contains("longer than the longest move"));
     // R alone in G81 mode is not an arc word (LinuxCNC: "R word with no g code that uses it").
     assert_eq!(
         error("G81 X1 Y1 Z-1 R1 F100\nR0.5\n"),

@@ -84,6 +84,16 @@ impl Reader {
             },
         };
         let levels = self.cycle_levels(line, col, m, w)?;
+        let longest = (levels.r - levels.z).min(levels.q);
+        if longest / self.feed > check::MAX_MOVE_TIME_S {
+            let msg = format!(
+                "{name}: a feed move takes {} s at F{}: longer than the longest move ({} s, one day)",
+                longest / self.feed,
+                check::feed_shown(self.feed, self.unit),
+                check::MAX_MOVE_TIME_S
+            );
+            return Err(self.error(line, col, msg));
+        }
         let pecks = peck_count(levels.r - levels.z, levels.q);
         if repeats as f64 * (3.0 * pecks + 4.0) > MAX_CYCLE_BLOCKS {
             let msg = format!(

@@ -18,8 +18,10 @@ impl Reader {
         line: u32,
         words: &[crate::gcode::words::Word],
     ) -> Result<(), ProgramError> {
+        // F (step 4) comes before G20/G21 (step 16): read in the units in force before the line.
+        let f_unit = self.unit;
         let codes = self.modal_words(line, words)?;
-        let mut w = self.read_words(line, words)?;
+        let mut w = self.read_words(line, words, f_unit)?;
         self.check_group_zero(line, &codes, &w)?;
         self.check_nurbs_open(line, &codes)?;
         self.apply_tool(line, &codes, &w.extra, &mut w.axes)?;

@@ -36,8 +36,13 @@ impl LineWords {
 
 impl Reader {
     /// Sort the words of a line (each letter at most once, LinuxCNC's rule); F is applied at
-    /// once in G94 (units per minute), capped at the machine's largest feed.
-    pub(super) fn read_words(&mut self, line: u32, words: &[Word]) -> Result<LineWords, ProgramError> {
+    /// once in G94 (`f_unit` per minute), capped at the machine's largest feed.
+    pub(super) fn read_words(
+        &mut self,
+        line: u32,
+        words: &[Word],
+        f_unit: f64,
+    ) -> Result<LineWords, ProgramError> {
         let mut out = LineWords::default();
         for w in words {
             let v = w.value;
@@ -61,7 +66,7 @@ impl Reader {
                 }
                 b'F' => {
                     // G94: units per minute; an NC runs any F at most at its largest feed.
-                    self.feed = check::feed(v, self.unit).map_err(located)?.min(self.max_feed);
+                    self.feed = check::feed(v, f_unit).map_err(located)?.min(self.max_feed);
                     &mut out.f
                 }
                 b'T' => &mut out.extra.t,
