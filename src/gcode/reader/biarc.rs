@@ -211,10 +211,11 @@ fn refine(
     out: &mut Vec<Piece>,
 ) -> Result<(), FitError> {
     let (p0, p1) = (c.point(a), c.point(b));
-    let samples = (1..=SAMPLES).map(|i| c.point(a + (b - a) * i as f64 / (SAMPLES + 1) as f64));
+    let samples: [P2; SAMPLES] =
+        std::array::from_fn(|i| c.point(a + (b - a) * (i + 1) as f64 / (SAMPLES + 1) as f64));
     let start = out.last().map_or(p0, Piece::to);
     let tol_measured = MEASURED_SHARE * tol;
-    if norm(sub(p1, p0)) <= tol && samples.clone().all(|q| norm(sub(q, p0)) <= tol) {
+    if norm(sub(p1, p0)) <= tol && samples.iter().all(|q| norm(sub(*q, p0)) <= tol) {
         // A piece shorter than the tolerance: one line (none if it ends where it starts).
         if norm(sub(p1, start)) > 0.0 {
             out.push(Piece::Line { to: p1 });
@@ -224,8 +225,8 @@ fn refine(
     let (t0, t1) = (tangent(c, a, lo, hi), tangent(c, b, lo, hi));
     if let Some(pair) = biarc(start, t0, p1, t1, tol / 4.0) {
         let fits = samples
-            .clone()
-            .all(|q| pair[0].distance(start, q).min(pair[1].distance(pair[0].to(), q)) <= tol_measured);
+            .iter()
+            .all(|&q| pair[0].distance(start, q).min(pair[1].distance(pair[0].to(), q)) <= tol_measured);
         if fits || depth >= MAX_DEPTH {
             if out.len() + 2 > max {
                 return Err(FitError::TooManyPieces);

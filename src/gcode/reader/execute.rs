@@ -194,7 +194,7 @@ impl Reader {
         let to = self.target(line, w, machine)?;
         let feeds = mode != Mode::Rapid && (w.moves() || matches!(mode, Mode::Arc(_)));
         if feeds {
-            self.check_feed(line, col, &mode.name(), w)?;
+            self.check_feed(line, col, mode, w)?;
         }
         let block = match mode {
             Mode::Rapid | Mode::Linear if !w.moves() => return Ok(()),
@@ -217,15 +217,19 @@ impl Reader {
         &self,
         line: u32,
         col: u32,
-        name: &str,
+        mode: Mode,
         w: &LineWords,
     ) -> Result<(), ProgramError> {
         if self.inverse_time && w.f.is_none() {
-            let msg = format!("{name} in G93 needs F on its line (inverse time: the move takes 1/F minutes)");
+            let msg = format!(
+                "{} in G93 needs F on its line (inverse time: the move takes 1/F minutes)",
+                mode.name()
+            );
             return Err(self.error(line, col, msg));
         }
         if !self.inverse_time && self.feed <= 0.0 {
-            return Err(self.error(line, col, format!("{name} with no feed rate: F was never set")));
+            let msg = format!("{} with no feed rate: F was never set", mode.name());
+            return Err(self.error(line, col, msg));
         }
         Ok(())
     }
@@ -240,34 +244,34 @@ impl Reader {
         blocks: &mut [Block],
     ) -> Result<(), ProgramError> {
         let length: f64 = blocks.iter().map(super::inverse::length).sum();
-        let (time, what) = match (self.inverse_time, w.f) {
-            (true, Some((f, fc))) => {
+        let g93 = w.f.filter(|_| self.inverse_time);
+        let time = match g93 {
+            Some((f, _)) => {
                 for b in blocks.iter_mut() {
                     b.feed = super::inverse::feed(length, f, self.max_feed);
                 }
-                (
-                    60.0 / f,
-                    (fc, format!("G93 F{f}: the move takes 1/F = {} min", 1.0 / f)),
-                )
+                60.0 / f
             }
-            _ => {
-                let at = w.f.map_or(col, |f| f.1);
-                let shown = check::feed_shown(self.feed, self.unit);
-                (
-                    length / self.feed,
-                    (at, format!("the move takes {} s at F{shown}", length / self.feed)),
-                )
-            }
+            None => length / self.feed,
         };
-        if time > check::MAX_MOVE_TIME_S {
-            let msg = format!(
-                "{}: longer than the longest move ({} s, one day)",
-                what.1,
-                check::MAX_MOVE_TIME_S
-            );
-            return Err(self.error(line, what.0, msg));
+        if time <= check::MAX_MOVE_TIME_S {
+            return Ok(());
         }
-        Ok(())
+        let (at, what) = match g93 {
+            Some((f, fc)) => (fc, format!("G93 F{f}: the move takes 1/F = {} min", 1.0 / f)),
+            None => (
+                w.f.map_or(col, |f| f.1),
+                format!(
+                    "the move takes {time} s at F{}",
+                    check::feed_shown(self.feed, self.unit)
+                ),
+            ),
+        };
+        let msg = format!(
+            "{what}: longer than the longest move ({} s, one day)",
+            check::MAX_MOVE_TIME_S
+        );
+        Err(self.error(line, at, msg))
     }
 
     /// G28 / G30 (LinuxCNC "G28, G28.1", "G30, G30.1"): a rapid to the programmed point if any,

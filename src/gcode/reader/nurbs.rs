@@ -6,7 +6,10 @@
 //! homogeneous points (w·x, w·y, w); the derivative from the derived B-spline of order k − 1
 //! and the quotient rule.
 
-/// A NURBS curve: control points (x, y, w) and order k (2 ≤ k ≤ number of points).
+/// Largest order evaluated.
+pub const MAX_ORDER: usize = 16;
+
+/// A NURBS curve: control points (x, y, w) and order k (2 ≤ k ≤ number of points, MAX_ORDER).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Nurbs {
     /// Homogeneous control points (w·x, w·y, w).
@@ -18,7 +21,8 @@ pub struct Nurbs {
 impl Nurbs {
     /// The curve of `points` (x, y, weight > 0) of order `k`; None unless 2 ≤ k ≤ points.
     pub fn new(points: &[[f64; 3]], k: usize) -> Option<Nurbs> {
-        if k < 2 || points.len() < k || points.iter().any(|p| p[2] <= 0.0 || !p[2].is_finite()) {
+        let bad_weight = points.iter().any(|p| p[2] <= 0.0 || !p[2].is_finite());
+        if k < 2 || k > MAX_ORDER || points.len() < k || bad_weight {
             return None;
         }
         let n = points.len() - 1;
@@ -65,9 +69,13 @@ impl Nurbs {
         s
     }
 
-    /// De Boor: the homogeneous point of order `k` with control points `c` and knots `t` at `u`.
-    fn de_boor(c: &[[f64; 3]], t: &[f64], k: usize, s: usize, u: f64) -> [f64; 3] {
-        let mut d: Vec<[f64; 3]> = (0..k).map(|j| c[j + s + 1 - k]).collect();
+    /// De Boor: the homogeneous point of order `k` (≤ MAX_ORDER) with control points `c` and
+    /// knots `t` at `u` in span `s` (c[j] for j in s + 1 − k ..= s).
+    fn de_boor(c: impl Fn(usize) -> [f64; 3], t: &[f64], k: usize, s: usize, u: f64) -> [f64; 3] {
+        let mut d = [[0.0; 3]; MAX_ORDER];
+        for (j, dj) in d.iter_mut().enumerate().take(k) {
+            *dj = c(j + s + 1 - k);
+        }
         for r in 1..k {
             for j in (r..k).rev() {
                 let i = j + s + 1 - k;
@@ -81,13 +89,8 @@ impl Nurbs {
     }
 
     fn homogeneous(&self, u: f64) -> [f64; 3] {
-        Self::de_boor(
-            &self.h,
-            &self.knots,
-            self.k,
-            self.span(u),
-            u.clamp(0.0, self.u_max()),
-        )
+        let u = u.clamp(0.0, self.u_max());
+        Self::de_boor(|i| self.h[i], &self.knots, self.k, self.span(u), u)
     }
 
     /// The point at parameter `u`.
@@ -100,21 +103,15 @@ impl Nurbs {
     pub fn derivative(&self, u: f64) -> [f64; 2] {
         let k = self.k;
         // Derived control points (k − 1)(Q_{i+1} − Q_i)/(t_{i+k} − t_{i+1}), order k − 1, knots
-        // t_1 … t_{m−1}.
-        let dc: Vec<[f64; 3]> = (0..self.h.len() - 1)
-            .map(|i| {
-                let den = self.knots[i + k] - self.knots[i + 1];
-                let f = if den > 0.0 { (k - 1) as f64 / den } else { 0.0 };
-                std::array::from_fn(|m| f * (self.h[i + 1][m] - self.h[i][m]))
-            })
-            .collect();
+        // t_1 … t_{m−1}; only the k − 1 of the span are formed.
+        let derived = |i: usize| -> [f64; 3] {
+            let den = self.knots[i + k] - self.knots[i + 1];
+            let f = if den > 0.0 { (k - 1) as f64 / den } else { 0.0 };
+            std::array::from_fn(|m| f * (self.h[i + 1][m] - self.h[i][m]))
+        };
         let s = self.span(u);
         let u = u.clamp(0.0, self.u_max());
-        let d = if k > 1 {
-            Self::de_boor(&dc, &self.knots[1..self.knots.len() - 1], k - 1, s - 1, u)
-        } else {
-            [0.0; 3]
-        };
+        let d = Self::de_boor(derived, &self.knots[1..self.knots.len() - 1], k - 1, s - 1, u);
         let a = self.homogeneous(u);
         let w = a[2];
         [(d[0] - d[2] * a[0] / w) / w, (d[1] - d[2] * a[1] / w) / w]

@@ -21,10 +21,10 @@ pub const SPLINE_SHARE: f64 = 0.1;
 /// Smallest approximation tolerance (m): 1 nm, however small the machine's tolerances.
 const MIN_SPLINE_TOLERANCE_M: f64 = 1e-9;
 /// Most arcs and lines one spline becomes.
-pub const MAX_SPLINE_PIECES: usize = 20_000;
+pub const MAX_SPLINE_PIECES: usize = 100_000;
 /// Most control points of one G5.2 block, and its largest order L.
 pub const MAX_NURBS_POINTS: usize = 1000;
-pub const MAX_NURBS_ORDER: u32 = 16;
+pub const MAX_NURBS_ORDER: u32 = super::nurbs::MAX_ORDER as u32;
 
 pub fn default_chord_tolerance() -> f64 {
     crate::config::Machine::default().chord_tolerance
@@ -57,7 +57,8 @@ impl Curve for Nurbs {
 
 impl Reader {
     /// Checks common to the spline codes: G17, no Z, no cutter compensation, a feed.
-    fn spline_checks(&self, line: u32, col: u32, name: &str, w: &LineWords) -> Result<(), ProgramError> {
+    fn spline_checks(&self, line: u32, col: u32, mode: Mode, w: &LineWords) -> Result<(), ProgramError> {
+        let name = mode.name();
         if self.plane != Plane::XY {
             return Err(self.error(
                 line,
@@ -72,7 +73,7 @@ impl Reader {
             let msg = format!("{name} with cutter compensation on (LinuxCNC: cannot convert spline with cutter radius compensation)");
             return Err(self.error(line, col, msg));
         }
-        self.check_feed(line, col, name, w)
+        self.check_feed(line, col, mode, w)
     }
 
     /// A program-frame offset word pair (program units) as a machine-frame vector (m).
@@ -90,8 +91,7 @@ impl Reader {
         mode: Mode,
         w: &LineWords,
     ) -> Result<(), ProgramError> {
-        let name = mode.name();
-        self.spline_checks(line, col, &name, w)?;
+        self.spline_checks(line, col, mode, w)?;
         let [i, j, _] = w.ijk;
         let start = [self.position[0], self.position[1]];
         let to = self.target(line, w, false)?;
@@ -137,7 +137,7 @@ impl Reader {
         w: &LineWords,
         first: bool,
     ) -> Result<(), ProgramError> {
-        self.spline_checks(line, col, "G5.2", w)?;
+        self.spline_checks(line, col, Mode::Nurbs, w)?;
         let p = w.p;
         if let Some((v, c)) = p.filter(|(v, _)| !(*v > 0.0 && v.is_finite())) {
             return Err(self.error(line, c, format!("G5.2: the weight P{v} must be positive")));
