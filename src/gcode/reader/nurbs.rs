@@ -22,7 +22,7 @@ impl Nurbs {
     /// The curve of `points` (x, y, weight > 0) of order `k`; None unless 2 ≤ k ≤ points.
     pub fn new(points: &[[f64; 3]], k: usize) -> Option<Nurbs> {
         let bad_weight = points.iter().any(|p| p[2] <= 0.0 || !p[2].is_finite());
-        if k < 2 || k > MAX_ORDER || points.len() < k || bad_weight {
+        if !(2..=MAX_ORDER).contains(&k) || points.len() < k || bad_weight {
             return None;
         }
         let n = points.len() - 1;
