@@ -248,6 +248,11 @@ fn group_zero_codes_run_before_the_motion() {
     let b = blocks("G20 G1 X1 F10\n");
     assert!((b[0].feed - 10.0 * 1e-3 / 60.0).abs() < 1e-15, "{}", b[0].feed);
     assert!((end_of(&b[0]).unwrap()[0] - 25.4e-3).abs() < 1e-15);
+    // G28.1 (step 23) stores the point before the line's move (step 24): G28 comes back to X1.
+    assert_eq!(
+        ends("G1 X1 F100\nG28.1 X5\nG28\n"),
+        vec![[1.0, 0.0, 0.0], [5.0, 0.0, 0.0], [5.0, 0.0, 0.0], [1.0, 0.0, 0.0]]
+    );
     // A modal G1 is suspended by G92 on a line: the axis words are G92's (no move).
     assert_eq!(
         ends("G1 X1 F100\nG92 X0\nX1\n"),

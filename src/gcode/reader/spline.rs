@@ -24,6 +24,10 @@ const MIN_SPLINE_TOLERANCE_M: f64 = 1e-9;
 pub const MAX_SPLINE_PIECES: usize = 100_000;
 /// Most control points of one G5.2 block, and its largest order L.
 pub const MAX_NURBS_POINTS: usize = 1000;
+/// Range of a G5.2 weight P: positive, and within a factor 1e12 of each other so that the
+/// weighted sums stay finite and well-conditioned.
+pub const MIN_WEIGHT: f64 = 1e-6;
+pub const MAX_WEIGHT: f64 = 1e6;
 pub const MAX_NURBS_ORDER: u32 = super::nurbs::MAX_ORDER as u32;
 
 pub fn default_chord_tolerance() -> f64 {
@@ -101,6 +105,9 @@ impl Reader {
             let (Some(p), Some(q)) = (w.p, w.extra.q) else {
                 return Err(self.error(line, col, "G5 needs both P and Q (the end's control offset)"));
             };
+            for (letter, (v, c)) in [(b'P', p), (b'Q', q)] {
+                crate::gcode::check::length(letter, v, self.unit).map_err(|m| self.error(line, c, m))?;
+            }
             let first = match (i, j, self.spline.g5_end) {
                 (Some(_), Some(_), _) => self.offset_vec(i, j),
                 (None, None, Some(v)) => self.rotate_vec(v),
@@ -139,8 +146,9 @@ impl Reader {
     ) -> Result<(), ProgramError> {
         self.spline_checks(line, col, Mode::Nurbs, w)?;
         let p = w.p;
-        if let Some((v, c)) = p.filter(|(v, _)| !(*v > 0.0 && v.is_finite())) {
-            return Err(self.error(line, c, format!("G5.2: the weight P{v} must be positive")));
+        if let Some((v, c)) = p.filter(|(v, _)| !(MIN_WEIGHT..=MAX_WEIGHT).contains(v)) {
+            let msg = format!("G5.2: the weight P{v} out of range ({MIN_WEIGHT} … {MAX_WEIGHT})");
+            return Err(self.error(line, c, msg));
         }
         let xy = w.axes[0].is_some() && w.axes[1].is_some() || w.polar.iter().any(Option::is_some);
         if !xy && (w.axes[0].is_some() || w.axes[1].is_some()) {
@@ -244,6 +252,13 @@ impl Reader {
             );
             self.error(line, col, msg)
         })?;
+        if pieces.iter().any(|p| !p.to().iter().all(|x| x.is_finite())) {
+            return Err(self.error(
+                line,
+                col,
+                "spline: the curve is not finite (check its control points)",
+            ));
+        }
         let z = self.position[2];
         let mut blocks: Vec<Block> = Vec::with_capacity(pieces.len());
         let mut from = self.position;
