@@ -284,6 +284,7 @@ fn spline_errors_are_located() {
         ("G5.3\n", "s.ngc:1:1: G5.3 without G5.2 first (LinuxCNC \"G5.2 G5.3 NURBS Block\")"),
         ("F100 G5.2\nX1 Y1\nG1 X3\n", "s.ngc:3:1: G1 inside the NURBS block opened on line 1 (close it with G5.3 first)"),
         ("F100 G5.2\nX1 Y1\nX2 Y0\n", "s.ngc:1:1: G5.2 NURBS block not closed by G5.3 before the end of the program"),
+        ("G93 G5.2 X1 Y1 F1\n", "s.ngc:1:5: G5.2 in G93: a NURBS block spans several lines, no one F gives its time; use G94"),
         ("F100 G5.2\nX1 Y1 P0\n", "s.ngc:2:7: G5.2: the weight P0 out of range (0.000001 … 1000000)"),
         (
             "G41.1 D1 G1 X1 F100\nG5 I0 J1 P0 Q-1 X2 Y2\n",

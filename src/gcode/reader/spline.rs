@@ -144,6 +144,10 @@ impl Reader {
         w: &LineWords,
         first: bool,
     ) -> Result<(), ProgramError> {
+        if self.inverse_time {
+            let msg = "G5.2 in G93: a NURBS block spans several lines, no one F gives its time; use G94";
+            return Err(self.error(line, col, msg));
+        }
         self.spline_checks(line, col, Mode::Nurbs, w)?;
         let p = w.p;
         if let Some((v, c)) = p.filter(|(v, _)| !(MIN_WEIGHT..=MAX_WEIGHT).contains(v)) {
