@@ -420,11 +420,26 @@ fn cli_refuses_a_move_longer_than_a_day() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains(":1:11: G93 F0.000000001"), "{err}");
+    // A G93 move of 100 min stopped by --max-time: the message names the path feed, not F.
+    std::fs::write(&path, "G93 G1 X1 F0.01\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cnc-motion"))
+        .args(["run", path.to_str().unwrap(), "--max-time", "0.5"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("feed too low: 0.01 mm/min along the path") && !err.contains("F0.01 mm/min"),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).ok();
     assert!(
         validate("G93 G1 X1 F0.001\n", "t.ngc").is_ok(),
         "1000 min is under a day"
     );
+    // A program file's path quoted in an error is cut, not echoed whole.
+    let long = std::path::Path::new("/").join("x".repeat(100_000));
+    let e = cnc_motion::gcode::source::read_program_file(&long, "p.ngc").unwrap_err();
+    assert!(e.len() < 3000 && e.contains("characters cut"), "{}", e.len());
 }
 
 /// "G41.1, G42.1" (LinuxCNC "Cutter Compensation"): tolerances are lengths, so a 1 µm tool runs
