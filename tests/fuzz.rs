@@ -1,5 +1,6 @@
 //! Fuzz harness (issue 11): mutates the corpus programs (corpus/*.ngc,
-//! resources/default.ngc) and machine files, runs each case through the library with a bounded
+//! resources/default.ngc), programs with issue 20's words (G10 L2 R, polar, G5.x, `%`, L
+//! repeats, group-0 codes with motion) and machine files, runs each case through the library with a bounded
 //! number of ticks, and sorts the outcome:
 //!
 //! - `finished`: the programmed end reached exactly, every tick finite, no jump, axis velocity and
