@@ -218,23 +218,54 @@ impl Range {
 
     /// `si` (SI) within the range, else the message in the file's unit with the FMU name.
     pub fn check(&self, prefix: &str, fmi_prefix: &str, si: f64) -> Result<(), RangeError> {
+        self.check_in(prefix, fmi_prefix, si, false)
+    }
+
+    /// `check` for a file in `inch` units (`units = "inch"`): a length key's value and range
+    /// are quoted in inches, as the file wrote them.
+    pub fn check_in(&self, prefix: &str, fmi_prefix: &str, si: f64, inch: bool) -> Result<(), RangeError> {
         if self.contains(si) {
             return Ok(());
         }
-        let shown = |x: f64| number(x / self.factor);
+        let inches = inch && self.unit.starts_with("mm");
+        let (factor, unit) = if inches {
+            (self.factor * INCH_MM, self.unit.replacen("mm", "in", 1))
+        } else {
+            (self.factor, self.unit.to_string())
+        };
+        let shown = |x: f64| {
+            let v = x / factor;
+            number(if inches { significant(v) } else { v })
+        };
         let zero = if self.zero_ok { "0 or " } else { "" };
         Err(RangeError {
             key: format!("{prefix}{}", self.key),
             message: format!(
-                "{prefix}{} = {} out of range ({zero}{} … {} {}; FMU {fmi_prefix}{})",
+                "{prefix}{} = {} out of range ({zero}{} … {} {unit}; FMU {fmi_prefix}{})",
                 self.key,
                 shown(si),
                 shown(self.min),
                 shown(self.max),
-                self.unit,
                 self.fmi
             ),
         })
+    }
+}
+
+/// Millimetres per inch.
+pub const INCH_MM: f64 = 25.4;
+
+/// `x` to 12 significant digits: a value converted to SI and back (× 25.4 ÷ 25.4) reads as
+/// written, not 400000.00000000006.
+pub fn significant(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(11 - x.abs().log10().floor() as i32);
+    if scale.is_finite() && (x * scale).is_finite() {
+        (x * scale).round() / scale
+    } else {
+        x
     }
 }
 
@@ -314,16 +345,17 @@ pub fn check_machine(m: &Machine) -> Result<(), RangeError> {
         ("max_snap_mm_s4", Some(m.max_snap)),
         ("max_transition_jerk_mm_s3", m.max_transition_jerk),
     ];
+    let inch = m.nc.inch;
     for (key, value) in top {
         if let Some(v) = value {
-            row(MACHINE, key)?.check("", "", v)?;
+            row(MACHINE, key)?.check_in("", "", v, inch)?;
         }
     }
     for (axis, a) in ["x", "y", "z"].iter().zip(&m.axes) {
         let (prefix, fmi) = (format!("axis.{axis}."), format!("{axis}."));
-        row(AXIS, "max_velocity_mm_min")?.check(&prefix, &fmi, a.max_velocity)?;
-        row(AXIS, "max_acceleration_mm_s2")?.check(&prefix, &fmi, a.max_acceleration)?;
-        row(AXIS, "max_jerk_mm_s3")?.check(&prefix, &fmi, a.max_jerk)?;
+        row(AXIS, "max_velocity_mm_min")?.check_in(&prefix, &fmi, a.max_velocity, inch)?;
+        row(AXIS, "max_acceleration_mm_s2")?.check_in(&prefix, &fmi, a.max_acceleration, inch)?;
+        row(AXIS, "max_jerk_mm_s3")?.check_in(&prefix, &fmi, a.max_jerk, inch)?;
     }
     for (axis, s) in ["x", "y", "z"].iter().zip(&m.servo) {
         check_servo(&format!("servo.{axis}."), &format!("{axis}.servo."), s)?;

@@ -320,12 +320,13 @@ fn not_finished(engine: &Engine, program: &str, max_time: f64) -> String {
             Segment::Dwell { seconds, .. } => {
                 format!("dwelling (G4 P{seconds}), {left:.3} s of the dwell left")
             }
+            // The path feed, not F: in G93 F is 1/min, in G20 in/min.
             _ if block.v_feed * 60.0 / MM < 1.0 => format!(
-                "feed too low: F{} mm/min, {left:.3} s of this block left",
+                "feed too low: {} mm/min along the path, {left:.3} s of this block left",
                 block.v_feed * 60.0 / MM
             ),
             _ => format!(
-                "moving at {:.3} mm/min (programmed F{} mm/min), {left:.3} s of this block left",
+                "moving at {:.3} mm/min (the block's path feed {} mm/min), {left:.3} s of this block left",
                 engine.tick().feed * 60.0 / MM,
                 block.v_feed * 60.0 / MM
             ),
