@@ -35,8 +35,6 @@ use serde::{Deserialize, Serialize};
 /// Largest turning angle at a smooth vertex (cos), and longest segment smoothed.
 const SMOOTH_MIN_COS: f64 = 0.866_025_403_784_438_6; // 30°
 const SMOOTH_MAX_SEGMENT: f64 = 5e-3;
-/// Neighbouring segments of a smooth vertex differ in length by at most this factor.
-const SMOOTH_MAX_RATIO: f64 = 4.0;
 /// Pieces joined with first derivatives this close and second derivatives this close (1/m)
 /// need no transition.
 const JOINT_D1_EPS: f64 = 1e-9;
@@ -95,7 +93,9 @@ fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
     let (t_mid, k_mid) = circle_jet(a, b, c);
     let toward = if reverse { sub(a, b) } else { sub(b, a) };
     if dot(k_mid, k_mid) == 0.0 {
-        return (t_mid, k_mid);
+        // Collinear points: the chord's direction, pointing the way the path runs at `a`.
+        let t = if dot(t_mid, toward) < 0.0 { scale(t_mid, -1.0) } else { t_mid };
+        return (t, k_mid);
     }
     let o = add(b, scale(k_mid, 1.0 / dot(k_mid, k_mid)));
     let r = sub(o, a);
@@ -461,8 +461,8 @@ pub(super) fn jet_at(piece: &Piece, u: f64) -> Jet {
     }
 }
 
-/// The vertex between two moves is smooth: two short line moves of one feed and similar
-/// length that turn gently.
+/// The vertex between two moves is smooth: two short line moves of one feed that turn gently,
+/// whatever their lengths (CAM output alternates 8 µm and 1 µm moves; the fit checks every chord).
 fn smooth_vertex(prev: &Move, next: &Move) -> bool {
     let (Source::Line(a), Source::Line(b)) = (prev.source, next.source) else {
         return false;
@@ -474,8 +474,6 @@ fn smooth_vertex(prev: &Move, next: &Move) -> bool {
         || prev.feed != next.feed
         || la > SMOOTH_MAX_SEGMENT
         || lb > SMOOTH_MAX_SEGMENT
-        || la > SMOOTH_MAX_RATIO * lb
-        || lb > SMOOTH_MAX_RATIO * la
         || cos < SMOOTH_MIN_COS)
 }
 
