@@ -94,7 +94,11 @@ fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
     let toward = if reverse { sub(a, b) } else { sub(b, a) };
     if dot(k_mid, k_mid) == 0.0 {
         // Collinear points: the chord's direction, pointing the way the path runs at `a`.
-        let t = if dot(t_mid, toward) < 0.0 { scale(t_mid, -1.0) } else { t_mid };
+        let t = if dot(t_mid, toward) < 0.0 {
+            scale(t_mid, -1.0)
+        } else {
+            t_mid
+        };
         return (t, k_mid);
     }
     let o = add(b, scale(k_mid, 1.0 / dot(k_mid, k_mid)));
