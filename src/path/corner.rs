@@ -5,7 +5,7 @@ use super::arc::{chord_error_speed, constant_speed_limit, Arc};
 #[cfg(test)]
 use super::norm;
 use super::{add, arc_limits, cross, dot, line_limits, scale, sub, unit, PathBlock, Segment};
-use crate::config::Machine;
+use crate::config::{CornerMode, Machine};
 use crate::Vec3;
 
 /// Turns sharper than this (cos of the turning angle below it) stop exactly: the transition
@@ -83,8 +83,31 @@ pub fn eased(machine: &Machine) -> Machine {
     m
 }
 
-/// New limits for a block next to a curvature step of the polynomial mode (`corner::eased`).
-pub(super) fn ease(block: &mut PathBlock, eased: &Machine) {
+/// The junction speed at a tangent junction whose second derivative jumps by `dk` (eq. 10); in
+/// the `polynomial` mode the blocks on both sides get the eased limits that keep the axis jerk
+/// (`step_jerk`).
+pub(super) fn tangent_junction(dk: Vec3, held: &mut PathBlock, next: &mut PathBlock, m: &Machine) -> f64 {
+    let keeps_jerk = m.corner == CornerMode::Polynomial;
+    let v = curvature_change_speed(dk, step_jerk(m, keeps_jerk), m.interpolation_period);
+    if keeps_jerk && v > 0.0 && dk != [0.0; 3] {
+        let eased = eased(m);
+        ease(held, &eased);
+        ease(next, &eased);
+    }
+    v
+}
+
+/// Limits a line can stop with whatever comes after it: in the `polynomial` mode those it gets
+/// if a curvature step follows (`ease`).
+pub(super) fn stop_limits(line: &PathBlock, m: &Machine) -> crate::feed::Limits {
+    match (&line.segment, m.corner) {
+        (Segment::Line(l), CornerMode::Polynomial) => line_limits(l.direction(), &eased(m)),
+        _ => line.limits,
+    }
+}
+
+/// New limits for a block next to a curvature step of the polynomial mode (`eased`).
+fn ease(block: &mut PathBlock, eased: &Machine) {
     block.limits = match &block.segment {
         Segment::Line(l) => line_limits(l.direction(), eased),
         Segment::Arc(a) => arc_limits(a, eased),

@@ -28,6 +28,7 @@ mod merge;
 mod micro;
 mod smooth;
 mod source;
+mod source_map;
 
 pub use arc::{
     arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, plane_axes, Arc, Shares,
@@ -295,7 +296,8 @@ impl PathBuilder {
     /// collinear G1 moves are merged first (merge.rs).
     pub fn push(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
         let mut merger = std::mem::take(&mut self.merger);
-        merger.push(block, |b| self.push_merged(b, out));
+        let split = self.machine.corner == CornerMode::Smooth;
+        merger.push(block, split, |b| self.push_merged(b, out));
         self.merger = merger;
     }
 
@@ -380,7 +382,8 @@ impl PathBuilder {
     /// End of program: release the held segment, stopping at its end.
     pub fn finish(&mut self, out: &mut Vec<PathBlock>) {
         let mut merger = std::mem::take(&mut self.merger);
-        merger.flush(&mut |b: &Block| self.push_merged(b, out));
+        let split = self.machine.corner == CornerMode::Smooth;
+        merger.flush(split, &mut |b: &Block| self.push_merged(b, out));
         self.release(0.0, out);
         self.stop_smooth(out);
     }
@@ -437,15 +440,7 @@ impl PathBuilder {
             }
             0.0
         } else if 1.0 - cos <= corner::TANGENT_EPS {
-            let dk = sub(g_out.d2, g_in.d2);
-            let keeps_jerk = m.corner == CornerMode::Polynomial;
-            let v = curvature_change_speed(dk, step_jerk(m, keeps_jerk), m.interpolation_period).min(feeds);
-            if keeps_jerk && v > 0.0 && norm(dk) > 0.0 {
-                let eased = corner::eased(m);
-                corner::ease(&mut held.block, &eased);
-                corner::ease(&mut next.block, &eased);
-            }
-            v
+            corner::tangent_junction(sub(g_out.d2, g_in.d2), &mut held.block, &mut next.block, m).min(feeds)
         } else if m.corner == CornerMode::AccelerationPeriod {
             // Seed 003's rule allows the velocity step of one period at the corner.
             corner_feed(t_in, t_out, m).min(feeds)
@@ -482,12 +477,7 @@ impl PathBuilder {
         // later. Slowing from v to any x < v takes (v + x)/2·T(v − x) ≤ v·T(v) = 2·D(v, 0): a speed
         // that stops in half the rest reaches every lower one.
         let rest = (1.0 - 2.0 * TRANSITION_SHARE) * next.programmed;
-        // With the limits the line may still get from a curvature step at its other end (`ease`).
-        let stop_limits = match m.corner {
-            CornerMode::Polynomial => line_limits(n.direction(), &corner::eased(m)),
-            _ => next.block.limits,
-        };
-        let v_stop = crate::feed::max_entry(m.profile, 0.5 * rest, 0.0, &stop_limits);
+        let v_stop = crate::feed::max_entry(m.profile, 0.5 * rest, 0.0, &corner::stop_limits(&next.block, m));
         let (segment, v) = self.transition(h.end, t_in, t_out, tol, max_cut, feeds.min(v_stop))?;
         held.block.segment = Segment::Line(Line {
             start: h.start,
