@@ -20,7 +20,6 @@ use cnc_motion::path::{Arc as ArcGeo, Line, Source};
 use proptest::prelude::*;
 use std::collections::HashMap;
 use std::f64::consts::TAU;
-use std::fmt::Write;
 use std::sync::Arc;
 
 /// A program and the programmed geometry of each of its motion lines (SI).

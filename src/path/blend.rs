@@ -91,14 +91,12 @@ impl Blend {
     /// largest at τ = ½ (eq. 55), d3 = (u + v)·(3 − 6τ)/(2L²) at the ends (eq. 53).
     pub fn derivative_bounds(&self) -> [Vec3; 3] {
         let l = self.half;
-        let mut b = [[0.0; 3]; 3];
-        for i in 0..3 {
-            let w = (self.u[i] + self.v[i]).abs();
-            b[0][i] = self.u[i].abs().max(self.v[i].abs());
-            b[1][i] = 0.75 * w / l;
-            b[2][i] = 1.5 * w / (l * l);
-        }
-        b
+        let w = |i: usize| (self.u[i] + self.v[i]).abs();
+        [
+            std::array::from_fn(|i| self.u[i].abs().max(self.v[i].abs())),
+            std::array::from_fn(|i| 0.75 * w(i) / l),
+            std::array::from_fn(|i| 1.5 * w(i) / (l * l)),
+        ]
     }
 }
 
