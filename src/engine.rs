@@ -16,8 +16,9 @@ use std::collections::VecDeque;
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
 // 3: reader NC state (tools, offsets, compensation, parameters); 4: O-word flow, G93, inch setup;
 // 5: override and hold in the plan stage; 6: the smooth mode's held sub-tolerance moves;
-// 7: reader: motion modes G5…, `%`, splines, work rotations, queued blocks kept, cycle words.
-const STATE_VERSION: u32 = 7;
+// 7: reader: motion modes G5…, `%`, splines, work rotations, queued blocks kept, cycle words;
+// 8: seed 004's transition in time (no arc-length table), chains' source-line marks.
+const STATE_VERSION: u32 = 8;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;

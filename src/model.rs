@@ -94,7 +94,7 @@ pub const ROWS: &[Row] = &[
     ("machine.maxPathAcceleration", REAL,    PAR, FIX,  "m/s2", NO,   NO,        Slot::Machine(4),       "path acceleration limit on top of the axes' (0: none)"),
     ("machine.maxPathJerk",         REAL,    PAR, FIX,  "m/s3", NO,   NO,        Slot::Machine(5),       "path jerk limit on top of the axes' (0: none)"),
     ("machine.maxSnap",             REAL,    PAR, FIX,  "m/s4", NO,   NO,        Slot::Machine(6),       "snap limit (jerk15)"),
-    ("machine.maxTransitionJerk",   REAL,    PAR, FIX,  "m/s3", NO,   NO,        Slot::Machine(7),       "axis jerk in constant-speed corner transitions (polynomial, circular; 0: the axes' own)"),
+    ("machine.maxTransitionJerk",   REAL,    PAR, FIX,  "m/s3", NO,   NO,        Slot::Machine(7),       "axis jerk on passage of a curvature discontinuity (seed 004 Table 1: eq. 10 junctions, circular corner arcs; 0: the axes' own)"),
     ("machine.arcRadiusTolerance",  REAL,    PAR, FIX,  "m",    NO,   NO,        Slot::Machine(8),       "arc end point radius mismatch accepted (G20 programs: 2.54 times it), or 0.1 % of the radius"),
     ("machine.lookaheadBlocks",     INT,     PAR, FIX,  "",     NO,   NO,        Slot::Lookahead,        "look-ahead window (segments)"),
     ("machine.profile",             ENUM(0), PAR, FIX,  "",     NO,   NO,        Slot::Profile,          "acc/dec law"),
