@@ -53,7 +53,11 @@ fn pessoles(machine_file: &str) -> (f64, Vec<f64>) {
     let text = verbatim
         .replacen("\nG0 X50 Y0 Z100\n", "\nG61 G0 X50 Y0 Z100\n", 1)
         .replacen("\nG1 X40 Y10 Z95 F5000\n", "\nG64 G1 X40 Y10 Z95 F5000\n", 1);
-    assert_eq!(text.matches("G61 G0").count() + text.matches("G64 G1").count(), 2, "{text}");
+    assert_eq!(
+        text.matches("G61 G0").count() + text.matches("G64 G1").count(),
+        2,
+        "{text}"
+    );
     let m = machine(machine_file);
     let (whole, feeds) = run(&text, &m);
     let rapid: String = text.lines().take(4).map(|l| format!("{l}\n")).collect();
