@@ -113,6 +113,18 @@ pub struct Chain {
 }
 
 impl Chain {
+    /// A restored chain as `push` builds it: pieces, their starts and the length in step.
+    pub fn check_state(&self) -> Result<(), String> {
+        let mut rebuilt = Chain::default();
+        for p in &self.pieces {
+            rebuilt.push(*p);
+        }
+        if self.is_empty() || rebuilt != *self {
+            return Err("a chain's pieces, starts and length disagree".into());
+        }
+        Ok(())
+    }
+
     pub fn push(&mut self, piece: Piece) {
         self.starts.push(self.length);
         self.length += piece.length();

@@ -20,6 +20,7 @@ mod arc;
 mod blend;
 mod budget;
 mod chain;
+mod check;
 mod corner;
 mod hermite;
 mod junction;

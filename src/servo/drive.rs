@@ -4,6 +4,8 @@
 //! and the external force), so the discretisation is stable and exact for any stiffness, mass or
 //! step; the nonlinear parts (torque saturation, Coulomb friction) are held per sub-step.
 
+mod rest;
+
 use super::{AxisState, ServoParams};
 use crate::tolerance::{PERIOD_SLACK, SAME_STEP};
 use nalgebra::{SMatrix, SVector, Vector2};
@@ -160,9 +162,16 @@ pub struct ServoAxis {
     command_position: f64,
     #[serde(skip)]
     full: Option<Step>,
+    /// The last few partial sub-step lengths (round robin): a servo rate that does not divide
+    /// the interpolation period repeats a short cycle of them.
     #[serde(skip)]
-    partial: Option<Step>,
+    partial: [Option<Step>; PARTIAL_STEPS],
+    #[serde(skip)]
+    next_partial: usize,
 }
+
+/// Partial sub-step lengths kept (see `ServoAxis::partial`).
+const PARTIAL_STEPS: usize = 4;
 
 impl ServoAxis {
     /// At rest at `position` (m), screw unloaded.
@@ -181,8 +190,34 @@ impl ServoAxis {
             phase: 0.0,
             command_position: position,
             full: None,
-            partial: None,
+            partial: [None; PARTIAL_STEPS],
+            next_partial: 0,
         }
+    }
+
+    /// A restored drive: this axis' parameters, its phase inside a period, its torques within
+    /// the peak and the Coulomb force, its positions and speeds in range.
+    pub fn check_state(&self, params: &ServoParams) -> Result<(), String> {
+        use crate::valid::{within, MAX_POSITION_M, MAX_SPEED_M_S};
+        if self.params != *params {
+            return Err("drive: saved with other servo parameters".into());
+        }
+        let p = &self.params;
+        within("servo phase", self.phase, 0.0, 1.0 / p.servo_rate)?;
+        within("torque command", self.torque_ref, -p.peak_torque, p.peak_torque)?;
+        let peak = p.peak_torque * (1.0 + 1e-9);
+        within("motor torque", self.x.tau, -peak, peak)?;
+        within("friction", self.friction, -p.coulomb_friction, p.coulomb_friction)?;
+        let r = self.lead_radius();
+        for (name, x) in [
+            ("table", self.x.x),
+            ("motor", r * self.x.theta),
+            ("command", self.command_position),
+        ] {
+            within(&format!("{name} position"), x, -MAX_POSITION_M, MAX_POSITION_M)?;
+        }
+        within("table speed", self.x.v, -MAX_SPEED_M_S, MAX_SPEED_M_S)?;
+        within("motor speed", r * self.x.omega, -MAX_SPEED_M_S, MAX_SPEED_M_S)
     }
 
     fn lead_radius(&self) -> f64 {
@@ -248,7 +283,13 @@ impl ServoAxis {
         let period = 1.0 / self.params.servo_rate;
         self.command_position = cmd.position;
         let mut left = dt;
-        while left > 0.0 {
+        // Each pass completes a period or ends the step (bounded by construction, whatever the
+        // phase a restored state brings).
+        let passes = (dt / period).min(1e12) as u64 + 2;
+        for _ in 0..passes {
+            if left.is_nan() || left <= 0.0 {
+                break;
+            }
             if self.phase == 0.0 {
                 self.control(cmd, period);
             }
@@ -260,18 +301,7 @@ impl ServoAxis {
                 (left, false)
             };
             let u = [self.torque_ref, load_force - self.friction];
-            let step = if (h - period).abs() <= SAME_STEP * period {
-                *self.full.get_or_insert_with(|| Step::new(&self.params, period))
-            } else {
-                match self.partial {
-                    Some(s) if s.h == h => s,
-                    _ => {
-                        let s = Step::new(&self.params, h);
-                        self.partial = Some(s);
-                        s
-                    }
-                }
-            };
+            let step = self.step_of(h, period);
             self.x = step.apply(&self.x, u);
             left -= h;
             self.phase = if completes { 0.0 } else { self.phase + h };
@@ -279,5 +309,19 @@ impl ServoAxis {
                 break;
             }
         }
+    }
+
+    /// Φ and Γ of a sub-step of length h: the full period's, or a cached partial one.
+    fn step_of(&mut self, h: f64, period: f64) -> Step {
+        if (h - period).abs() <= SAME_STEP * period {
+            return *self.full.get_or_insert_with(|| Step::new(&self.params, period));
+        }
+        if let Some(s) = self.partial.iter().flatten().find(|s| s.h == h) {
+            return *s;
+        }
+        let s = Step::new(&self.params, h);
+        self.partial[self.next_partial] = Some(s);
+        self.next_partial = (self.next_partial + 1) % PARTIAL_STEPS;
+        s
     }
 }

@@ -1,0 +1,144 @@
+//! A drive at rest over a long interval, in closed form. With the command still (v = a = 0), the
+//! load force constant, the torque command unsaturated, the table far inside the Coulomb band
+//! (F·tanh(v/v_b) = (F/v_b)·v to rounding) and the encoder count unchanged, one servo period —
+//! control law at its start, then the plant's exact step Φ, Γ — is an affine map of
+//! z = (θ, ω, x, v, τ, integrator, 1). N periods are its N-th power, by repeated squaring: the
+//! exact discretisation of the interval in O(log N) instead of N sub-steps.
+
+use super::{AxisCommand, ServoAxis, Step, N};
+use nalgebra::{SMatrix, SVector};
+
+/// The augmented state's size.
+const Z: usize = N + 2;
+type Map = SMatrix<f64, Z, Z>;
+
+/// The table and motor count as still when both move slower than this fraction of the
+/// friction band: tanh(v/v_b) is then v/v_b to 1e-12 relative.
+const STILL: f64 = 1e-6;
+/// The torque command stays this far inside the peak torque (no saturation on the way).
+const TORQUE_MARGIN: f64 = 0.5;
+
+impl ServoAxis {
+    /// Still: table and motor far inside the friction band, torque far from saturation.
+    pub fn still(&self) -> bool {
+        let p = &self.params;
+        let v_still = STILL * p.friction_velocity;
+        self.x.v.abs() <= v_still
+            && (self.lead_radius() * self.x.omega).abs() <= v_still
+            && self.torque_ref.abs() <= TORQUE_MARGIN * p.peak_torque
+    }
+
+    /// Advance `ticks` interpolation periods of `tick` seconds under a command at rest, in closed
+    /// form, if the drive is still and stays so (torque unsaturated, encoder count unchanged);
+    /// else nothing changes and the answer is false (the caller steps it).
+    pub fn rest(&mut self, cmd: &AxisCommand, load_force: f64, ticks: u64, tick: f64) -> bool {
+        if cmd.velocity != 0.0 || cmd.acceleration != 0.0 || !self.still() {
+            return false;
+        }
+        let period = 1.0 / self.params.servo_rate;
+        let mut next = self.clone();
+        // To the next period boundary, then whole periods, then what is left.
+        let first = if self.phase > 0.0 {
+            period - self.phase
+        } else {
+            0.0
+        };
+        let per_tick = tick * self.params.servo_rate;
+        let (periods, tail) = if first == 0.0 && (per_tick - per_tick.round()).abs() <= 1e-9 {
+            // The servo rate divides the interpolation period: whole periods, exactly.
+            (ticks.saturating_mul(per_tick.round() as u64), 0.0)
+        } else {
+            let left = ticks as f64 * tick - first;
+            let n = (left / period).floor().max(0.0);
+            (n as u64, (left - n * period).max(0.0))
+        };
+        if first > 0.0 {
+            next.step(cmd, load_force, first);
+        }
+        if periods > 1 {
+            next.periods_at_rest(cmd.position, load_force, periods - 1);
+        }
+        if periods > 0 {
+            // The last whole period as usual: the held torque and friction are its own.
+            next.step(cmd, load_force, period);
+        }
+        if tail > 0.0 {
+            next.step(cmd, load_force, tail);
+        }
+        let same_count = self.count() == next.count();
+        if !(same_count && next.still() && next.x.vector().iter().all(|x| x.is_finite())) {
+            return false;
+        }
+        *self = next;
+        true
+    }
+
+    /// The encoder count the control reads (None without an encoder in the loop).
+    fn count(&self) -> Option<f64> {
+        let p = &self.params;
+        (p.linear_scale == 0.0 && p.encoder_counts > 0.0)
+            .then(|| (self.x.theta / (2.0 * std::f64::consts::PI / p.encoder_counts)).round())
+    }
+
+    /// `n` whole periods from a period boundary: z ← M^n z.
+    fn periods_at_rest(&mut self, position: f64, load_force: f64, n: u64) {
+        let m = self.period_map(position, load_force);
+        let s = &self.x;
+        let z = SVector::<f64, Z>::from([s.theta, s.omega, s.x, s.v, s.tau, self.integral, 1.0]);
+        let z = power(&m, n) * z;
+        self.x = super::PlantState::from_vector(&z.fixed_rows::<N>(0).into_owned());
+        self.integral = z[N];
+        self.phase = 0.0;
+    }
+
+    /// One servo period at rest as an affine map of z (the control law of `control` with
+    /// v = a = 0 and the count held, then the plant's exact step).
+    fn period_map(&mut self, position: f64, load_force: f64) -> Map {
+        let p = self.params;
+        let period = 1.0 / p.servo_rate;
+        let r = self.lead_radius();
+        let Step { phi, gamma, .. } = self.step_of(period, period);
+        let unit = |i: usize| SVector::<f64, Z>::from_fn(|k, _| f64::from(u8::from(k == i)));
+        let one = unit(Z - 1);
+        // Position error e = command − feedback, as a row acting on z.
+        let e = if p.linear_scale != 0.0 {
+            one * position - unit(2)
+        } else if p.encoder_counts > 0.0 {
+            one * (position - self.feedback())
+        } else {
+            one * position - unit(0) * r
+        };
+        let ki = p.velocity_gain / p.velocity_integral_time;
+        let e_omega = e * (p.kv / r) - unit(1);
+        let integral = unit(N) + e_omega * (ki * period);
+        let torque = e_omega * p.velocity_gain + integral;
+        let force = one * load_force - unit(3) * (p.coulomb_friction / p.friction_velocity);
+        let mut m = Map::zeros();
+        for i in 0..N {
+            let mut row = torque * gamma[(i, 0)] + force * gamma[(i, 1)];
+            for j in 0..N {
+                row[j] += phi[(i, j)];
+            }
+            m.set_row(i, &row.transpose());
+        }
+        m.set_row(N, &integral.transpose());
+        m.set_row(Z - 1, &one.transpose());
+        m
+    }
+}
+
+/// m^n by repeated squaring (n ≥ 1).
+fn power(m: &Map, mut n: u64) -> Map {
+    let mut base = *m;
+    let mut out = Map::identity();
+    while n > 0 {
+        if n & 1 == 1 {
+            out = base * out;
+        }
+        n >>= 1;
+        if n > 0 {
+            base = base * base;
+        }
+    }
+    out
+}
