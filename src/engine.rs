@@ -27,6 +27,11 @@ use std::collections::VecDeque;
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
 pub use crate::valid::MAX_TIME_S;
+/// Ticks stepped before drives that could not take a rest in closed form are asked again.
+const REST_RETRY: u64 = 64;
+/// Fewest ticks at rest worth the closed form (shorter rests are stepped: the same result as
+/// with any other step size, to rounding, and cheaper).
+const REST_MIN_TICKS: u64 = 1000;
 /// Ticks one `advance` steps one by one at most (motion, and drives settling after it; ≈ 5–10 s
 /// of computing): a longer step is refused when it gets there. Ticks at rest with the drives
 /// still cost nothing (closed form).
@@ -244,10 +249,15 @@ impl Engine {
 
     /// Run to tick `ticks` plus `phase` periods.
     fn run_to(&mut self, ticks: u64, phase: f64) -> Result<(), ProgramError> {
-        let mut stepped = 0u64;
+        let (mut stepped, mut next_rest) = (0u64, 0u64);
         while self.ticks < ticks {
-            if self.quiescent() && self.rest_to(ticks) {
-                break;
+            // At rest for good, for long: the rest of the step at once, once the drives are still
+            // (tried again REST_RETRY ticks after a drive could not take it).
+            if stepped >= next_rest && ticks - self.ticks >= REST_MIN_TICKS && self.quiescent() {
+                if self.rest_to(ticks) {
+                    break;
+                }
+                next_rest = stepped + REST_RETRY;
             }
             if stepped == MAX_STEPPED_TICKS {
                 self.refresh_outputs();
@@ -289,7 +299,8 @@ impl Engine {
     /// closed form at rest; the ticks only move the clock). False, with nothing changed, if not.
     fn rest_to(&mut self, ticks: u64) -> bool {
         let n = ticks - self.ticks;
-        if self.phase != 0.0 {
+        let still = self.drives.iter().flatten().all(ServoAxis::still);
+        if self.phase != 0.0 || !still {
             return false;
         }
         if let Some(drives) = &self.drives {

@@ -106,3 +106,120 @@ impl Engine {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Machine;
+    use serde::{de::DeserializeOwned, Serialize};
+    use serde_json::{json, Value};
+
+    const SINK: &str = include_str!("../../tests/data/kitchen_sink.ngc");
+
+    fn machine() -> Machine {
+        Machine::from_toml("[tool.1]\nradius_mm = 2\nlength_mm = 10\n", "tools.toml").unwrap()
+    }
+
+    /// The kitchen-sink program after `seconds`, servo on.
+    fn running(seconds: f64) -> Engine {
+        let mut e = Engine::new(SINK, "sink.ngc", &machine())
+            .unwrap()
+            .with_servo(true);
+        e.advance(seconds).unwrap();
+        e
+    }
+
+    /// The message a state changed by `change` is refused with.
+    fn refused(e: &Engine, change: impl FnOnce(&mut Engine)) -> String {
+        let mut bad = e.clone();
+        change(&mut bad);
+        let mut fresh = Engine::new(SINK, "sink.ngc", &machine()).unwrap();
+        assert_eq!(
+            fresh.clone().restore_state(&e.save_state()),
+            Ok(()),
+            "the unchanged state"
+        );
+        fresh.restore_state(&bad.save_state()).unwrap_err()
+    }
+
+    /// `part` with the value at JSON `pointer` replaced (parts without NaN markers).
+    fn set<T: Serialize + DeserializeOwned>(part: &mut T, pointer: &str, value: Value) {
+        let mut v = serde_json::to_value(&*part).unwrap();
+        *v.pointer_mut(pointer).unwrap_or_else(|| panic!("{pointer}")) = value;
+        *part = serde_json::from_value(v).unwrap();
+    }
+
+    type Change = Box<dyn FnOnce(&mut Engine)>;
+
+    fn drive(e: &mut Engine) -> &mut crate::servo::ServoAxis {
+        &mut e.drives.as_mut().unwrap()[0]
+    }
+
+    #[test]
+    fn counters_indices_and_magnitudes_no_run_produces_are_refused() {
+        let e = running(6.0);
+        let big = json!(2_147_483_647u64);
+        let cases: Vec<(&str, Change)> = vec![
+            ("not the interpolator's", Box::new(|e| e.ticks = 2_147_483_647)),
+            (
+                "ticks = 18446744073709551615 out of range",
+                Box::new(|e| e.ticks = u64::MAX),
+            ),
+            ("phase", Box::new(|e| e.phase = 1.5)),
+            ("finish tick", Box::new(|e| e.finish_tick = Some(e.ticks + 10))),
+            (
+                "not the start of line",
+                Box::new(|e| {
+                    let next = json!(e.reader.offset() + 1);
+                    set(&mut e.reader, "/offset", next)
+                }),
+            ),
+            (
+                "not the start of line",
+                Box::new(move |e| set(&mut e.reader, "/line", big)),
+            ),
+            (
+                "work system = 1000",
+                Box::new(|e| set(&mut e.reader, "/work", json!(1000))),
+            ),
+            (
+                "loop passes",
+                Box::new(|e| set(&mut e.reader, "/flow/iterations", json!(2e9 as u64))),
+            ),
+            (
+                "peck depth",
+                Box::new(|e| set(&mut e.reader, "/cycle/q", json!(-1.0))),
+            ),
+            ("servo phase", Box::new(|e| set(drive(e), "/phase", json!(1.0)))),
+            (
+                "drives.x.x = -1.3e163 out of range",
+                Box::new(|e| set(drive(e), "/x/x", json!(-1.3e163))),
+            ),
+            (
+                "torque command",
+                Box::new(|e| set(drive(e), "/torque_ref", json!(100.0))),
+            ),
+            (
+                "time in block",
+                Box::new(|e| set(&mut e.interp, "/current/tau", json!(1e6))),
+            ),
+            (
+                "another machine",
+                Box::new(|e| e.machine.interpolation_period = 1e-300),
+            ),
+            ("load_force", Box::new(|e| e.load_force[2] = 1e300)),
+        ];
+        for (want, change) in cases {
+            let message = refused(&e, change);
+            assert!(message.contains(want), "{want}: {message}");
+        }
+        // A window larger than the look-ahead would read the whole program at once.
+        let mut done = running(6.0);
+        done.advance(20.0).unwrap();
+        assert!(done.finished());
+        let message = refused(&done, |e| {
+            set(&mut e.planner, "/capacity", json!(2_147_483_647u64))
+        });
+        assert!(message.contains("another law or look-ahead"), "{message}");
+    }
+}

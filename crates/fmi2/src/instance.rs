@@ -53,8 +53,9 @@ pub struct Snapshot<M> {
 }
 
 /// Serialized FMU state: magic "FMI2RS", format version (u16, big-endian), then GUID, time,
-/// slave state and the model's own (bincode) bytes, each length-prefixed and checked on reading.
-const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x02";
+/// slave state and the model's own bytes, each length-prefixed and checked on reading.
+/// Version 3: the models' bytes are postcard (was bincode 1.3).
+const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x03";
 
 /// Why a value is outside what the variable declares (non-finite Real, min/max, enumeration
 /// items), if it is.
@@ -275,6 +276,9 @@ impl<M: Model> Instance<M> {
             return Err("serialized FMU state belongs to another model (GUID mismatch)".into());
         }
         let time = f64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad time")?);
+        if !time.is_finite() {
+            return Err(format!("serialized FMU state has a time of {time}"));
+        }
         let state = match take(1)?[0] {
             0 => State::Instantiated,
             1 => State::InitializationMode,

@@ -1,9 +1,14 @@
 //! A drive at rest over a long interval, in closed form. With the command still (v = a = 0), the
-//! load force constant, the torque command unsaturated, the table far inside the Coulomb band
-//! (F·tanh(v/v_b) = (F/v_b)·v to rounding) and the encoder count unchanged, one servo period —
-//! control law at its start, then the plant's exact step Φ, Γ — is an affine map of
-//! z = (θ, ω, x, v, τ, integrator, 1). N periods are its N-th power, by repeated squaring: the
-//! exact discretisation of the interval in O(log N) instead of N sub-steps.
+//! load force constant, the torque command unsaturated and the table inside the linear part of
+//! its Coulomb band (F·tanh(v/v_b) ≈ (F/v_b)·v), one servo period — the control law at its start,
+//! then the plant's exact step Φ, Γ — is an affine map of z = (θ, ω, x, v, τ, integrator, 1).
+//! N periods are its N-th power, by repeated squaring: the exact discretisation of the interval
+//! in O(log N) instead of N sub-steps.
+//!
+//! The encoder count is held when the loop holds it over the interval (the map is then exactly
+//! the sub-stepped one, to rounding). A loop hunting between two counts (an integrator and a
+//! quantised position never agree) has no count to hold: there the encoder is taken as ideal,
+//! and the drive ends at the linear loop's rest, within a count of where the hunting would be.
 
 use super::{AxisCommand, ServoAxis, Step, N};
 use nalgebra::{SMatrix, SVector};
@@ -12,9 +17,9 @@ use nalgebra::{SMatrix, SVector};
 const Z: usize = N + 2;
 type Map = SMatrix<f64, Z, Z>;
 
-/// The table and motor count as still when both move slower than this fraction of the
-/// friction band: tanh(v/v_b) is then v/v_b to 1e-12 relative.
-const STILL: f64 = 1e-6;
+/// Table and motor count as still when both move slower than this fraction of the friction
+/// band: tanh(v/v_b) is then linear to 3e-5 relative.
+const STILL: f64 = 1e-2;
 /// The torque command stays this far inside the peak torque (no saturation on the way).
 const TORQUE_MARGIN: f64 = 0.5;
 
@@ -29,7 +34,7 @@ impl ServoAxis {
     }
 
     /// Advance `ticks` interpolation periods of `tick` seconds under a command at rest, in closed
-    /// form, if the drive is still and stays so (torque unsaturated, encoder count unchanged);
+    /// form, if the drive is still and stays so (count held, or the encoder taken as ideal);
     /// else nothing changes and the answer is false (the caller steps it).
     pub fn rest(&mut self, cmd: &AxisCommand, load_force: f64, ticks: u64, tick: f64) -> bool {
         if cmd.velocity != 0.0 || cmd.acceleration != 0.0 || !self.still() {
@@ -55,22 +60,30 @@ impl ServoAxis {
         if first > 0.0 {
             next.step(cmd, load_force, first);
         }
-        if periods > 1 {
-            next.periods_at_rest(cmd.position, load_force, periods - 1);
+        let start = next.clone();
+        let count = next.count();
+        for ideal in [false, true] {
+            if ideal && count.is_none() {
+                break;
+            }
+            next = start.clone();
+            if periods > 1 {
+                next.periods_at_rest(cmd.position, load_force, periods - 1, ideal);
+            }
+            if periods > 0 {
+                // The last whole period as usual: the held torque and friction are its own.
+                next.step(cmd, load_force, period);
+            }
+            if tail > 0.0 {
+                next.step(cmd, load_force, tail);
+            }
+            let finite = next.x.vector().iter().all(|x| x.is_finite());
+            if finite && next.still() && (ideal || next.count() == count) {
+                *self = next;
+                return true;
+            }
         }
-        if periods > 0 {
-            // The last whole period as usual: the held torque and friction are its own.
-            next.step(cmd, load_force, period);
-        }
-        if tail > 0.0 {
-            next.step(cmd, load_force, tail);
-        }
-        let same_count = self.count() == next.count();
-        if !(same_count && next.still() && next.x.vector().iter().all(|x| x.is_finite())) {
-            return false;
-        }
-        *self = next;
-        true
+        false
     }
 
     /// The encoder count the control reads (None without an encoder in the loop).
@@ -80,9 +93,9 @@ impl ServoAxis {
             .then(|| (self.x.theta / (2.0 * std::f64::consts::PI / p.encoder_counts)).round())
     }
 
-    /// `n` whole periods from a period boundary: z ← M^n z.
-    fn periods_at_rest(&mut self, position: f64, load_force: f64, n: u64) {
-        let m = self.period_map(position, load_force);
+    /// `n` whole periods from a period boundary: z ← M^n z (`ideal`: the encoder unquantised).
+    fn periods_at_rest(&mut self, position: f64, load_force: f64, n: u64, ideal: bool) {
+        let m = self.period_map(position, load_force, ideal);
         let s = &self.x;
         let z = SVector::<f64, Z>::from([s.theta, s.omega, s.x, s.v, s.tau, self.integral, 1.0]);
         let z = power(&m, n) * z;
@@ -92,8 +105,9 @@ impl ServoAxis {
     }
 
     /// One servo period at rest as an affine map of z (the control law of `control` with
-    /// v = a = 0 and the count held, then the plant's exact step).
-    fn period_map(&mut self, position: f64, load_force: f64) -> Map {
+    /// v = a = 0 and the count held or, `ideal`, the encoder unquantised; then the plant's
+    /// exact step).
+    fn period_map(&mut self, position: f64, load_force: f64, ideal: bool) -> Map {
         let p = self.params;
         let period = 1.0 / p.servo_rate;
         let r = self.lead_radius();
@@ -103,7 +117,7 @@ impl ServoAxis {
         // Position error e = command − feedback, as a row acting on z.
         let e = if p.linear_scale != 0.0 {
             one * position - unit(2)
-        } else if p.encoder_counts > 0.0 {
+        } else if p.encoder_counts > 0.0 && !ideal {
             one * (position - self.feedback())
         } else {
             one * position - unit(0) * r
