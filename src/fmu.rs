@@ -18,6 +18,7 @@ const STATE_VERSION: u32 = 3;
 #[derive(Clone, Debug)]
 pub struct CncMotionFmu(pub CncMotion);
 
+#[inline]
 fn table() -> &'static [Entry<Slot>] {
     static TABLE: OnceLock<Vec<Entry<Slot>>> = OnceLock::new();
     TABLE.get_or_init(model::rows)
@@ -58,8 +59,10 @@ impl fmi2::Model for CncMotionFmu {
         })
     }
 
+    #[inline]
     fn get(&self, index: usize) -> Value {
-        self.0.get(table()[index].slot, table()[index].axis)
+        let e = &table()[index];
+        self.0.get(e.slot, e.axis)
     }
 
     fn set(&mut self, index: usize, value: Value) -> Result<(), String> {

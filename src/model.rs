@@ -224,22 +224,35 @@ impl CncMotion {
             Slot::FeedOverride => Value::Real(self.feed_override),
             Slot::FeedHold => Value::Boolean(self.feed_hold),
             Slot::LoadForce => Value::Real(self.load_force[i]),
-            Slot::Command(k) => real(&|e| [e.tick().p, e.tick().v, e.tick().a, e.tick().j][k][i]),
+            Slot::Command(k) => real(&|e| {
+                let t = e.tick();
+                (match k {
+                    0 => t.p,
+                    1 => t.v,
+                    2 => t.a,
+                    _ => t.j,
+                })[i]
+            }),
             Slot::Path(k) => real(&|e| {
                 let t = e.tick();
-                [t.feed, t.path_acceleration, t.path_jerk, t.distance][k]
+                match k {
+                    0 => t.feed,
+                    1 => t.path_acceleration,
+                    2 => t.path_jerk,
+                    _ => t.distance,
+                }
             }),
             Slot::Line => Value::Integer(e.map_or(0, |e| e.tick().line as i32)),
             Slot::Finished => Value::Boolean(e.is_some_and(|e| e.tick().finished)),
             Slot::Drive(k) => real(&|e| {
                 let d = &e.outputs().axes[i];
-                [
-                    d.position,
-                    d.velocity,
-                    d.following_error,
-                    d.motor_torque,
-                    d.drive_force,
-                ][k]
+                match k {
+                    0 => d.position,
+                    1 => d.velocity,
+                    2 => d.following_error,
+                    3 => d.motor_torque,
+                    _ => d.drive_force,
+                }
             }),
             Slot::ContourError => real(&|e| e.outputs().contour_error),
         }

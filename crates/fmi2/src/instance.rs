@@ -173,7 +173,19 @@ impl<M: Model> Instance<M> {
     }
 
     /// Index of the variable with this value reference and type family.
+    #[inline]
     pub fn lookup(&self, function: &str, vr: u32, family: Type) -> Result<usize, Status> {
+        // Value references are 1…n in table order: one comparison per read on the way out.
+        let vars = &M::info().variables;
+        let i = (vr as usize).wrapping_sub(1);
+        match vars.get(i) {
+            Some(v) if v.value_reference == vr && v.kind.family() == family => Ok(i),
+            _ => self.lookup_slow(function, vr, family),
+        }
+    }
+
+    #[cold]
+    fn lookup_slow(&self, function: &str, vr: u32, family: Type) -> Result<usize, Status> {
         let vars = &M::info().variables;
         // Value references are 1…n in table order; fall back to a search for other numberings.
         let i = (vr as usize)
@@ -194,6 +206,7 @@ impl<M: Model> Instance<M> {
     }
 
     /// Read a variable (the state is checked by the caller's entry in the abi table).
+    #[inline]
     pub fn get(&mut self, function: &str, vr: u32, family: Type) -> Result<Value, Status> {
         let i = self.lookup(function, vr, family)?;
         Ok(self.model.get(i))

@@ -90,7 +90,7 @@ impl ServoAxis {
     fn count(&self) -> Option<f64> {
         let p = &self.params;
         (p.linear_scale == 0.0 && p.encoder_counts > 0.0)
-            .then(|| (self.x.theta / (2.0 * std::f64::consts::PI / p.encoder_counts)).round())
+            .then(|| super::round(self.x.theta / (2.0 * std::f64::consts::PI / p.encoder_counts)))
     }
 
     /// `n` whole periods from a period boundary: z ← M^n z (`ideal`: the encoder unquantised).
@@ -111,7 +111,7 @@ impl ServoAxis {
         let p = self.params;
         let period = 1.0 / p.servo_rate;
         let r = self.lead_radius();
-        let Step { phi, gamma, .. } = self.step_of(period, period);
+        let Step { phi, gamma, .. } = *self.steps.of(&p, period, period);
         let unit = |i: usize| SVector::<f64, Z>::from_fn(|k, _| f64::from(u8::from(k == i)));
         let one = unit(Z - 1);
         // Position error e = command − feedback, as a row acting on z.
