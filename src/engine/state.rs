@@ -222,4 +222,109 @@ mod tests {
         });
         assert!(message.contains("another law or look-ahead"), "{message}");
     }
+
+    /// Every numeric field of the stages' states (JSON leaves), one at a time, set to a value
+    /// from a list of extremes: refused with a message, or the engine runs on for 5 ticks with
+    /// finite outputs (or stops with a located program error), never a panic. Seeded by
+    /// CNC_FUZZ_SEED; CNC_STATE_FUZZ_CASES cases (default 1500).
+    #[test]
+    fn any_field_set_to_an_extreme_is_refused_or_runs_on() {
+        let env = |k: &str, d: u64| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
+        let mut x = env("CNC_FUZZ_SEED", 20_261_124) | 1;
+        let mut rng = move |n: usize| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % n as u64) as usize
+        };
+        let extremes = [
+            json!(2_147_483_647u64),
+            json!(u64::MAX),
+            json!(-1),
+            json!(0),
+            json!(1e300),
+            json!(-1.3e163),
+            json!(1e-300),
+            json!(2.5),
+        ];
+        let states = [running(0.7), running(3.3), running(6.0), running(9.5)];
+        let (mut refused_n, mut ran, mut located, mut skipped) = (0, 0, 0, 0);
+        for case in 0..env("CNC_STATE_FUZZ_CASES", 1500) {
+            let mut e = states[rng(states.len())].clone();
+            let part = rng(7);
+            let mut tree = match part {
+                0 => serde_json::to_value(&e.reader),
+                1 => serde_json::to_value(&e.builder),
+                2 => serde_json::to_value(&e.interp),
+                3 => serde_json::to_value(&e.queue),
+                4 => serde_json::to_value(&e.planner),
+                5 => serde_json::to_value(&e.control),
+                _ => serde_json::to_value(&e.drives),
+            }
+            .unwrap();
+            let leaves = numbers_in(&tree, String::new());
+            if leaves.is_empty() {
+                skipped += 1;
+                continue;
+            }
+            let at = &leaves[rng(leaves.len())];
+            *tree.pointer_mut(at).unwrap() = extremes[rng(extremes.len())].clone();
+            let back = match part {
+                0 => serde_json::from_value(tree).map(|v| e.reader = v),
+                1 => serde_json::from_value(tree).map(|v| e.builder = v),
+                2 => serde_json::from_value(tree).map(|v| e.interp = v),
+                3 => serde_json::from_value(tree).map(|v| e.queue = v),
+                4 => serde_json::from_value(tree).map(|v| e.planner = v),
+                5 => serde_json::from_value(tree).map(|v| e.control = v),
+                _ => serde_json::from_value(tree).map(|v| e.drives = v),
+            };
+            if back.is_err() {
+                skipped += 1; // not of the field's type, or a NaN marker elsewhere in the part
+                continue;
+            }
+            let mut fresh = Engine::new(SINK, "sink.ngc", &machine()).unwrap();
+            match fresh.restore_state(&e.save_state()) {
+                Err(m) => {
+                    assert!(!m.is_empty());
+                    refused_n += 1;
+                }
+                Ok(()) => {
+                    let mut outcome = "ran";
+                    for _ in 0..env("CNC_STATE_FUZZ_STEPS", 5) {
+                        if let Err(err) = fresh.advance(1e-3) {
+                            assert!(err.line >= 1, "case {case} ({part}{at}): {err}");
+                            outcome = "located";
+                            break;
+                        }
+                        let ok = fresh.check_outputs();
+                        assert!(ok.is_ok(), "case {case} ({part}{at}): {ok:?}");
+                    }
+                    if outcome == "ran" {
+                        ran += 1;
+                    } else {
+                        located += 1;
+                    }
+                }
+            }
+        }
+        println!("fields set to extremes: refused {refused_n}, ran {ran}, located error {located}, not representable {skipped}");
+        assert!(refused_n > 100 && ran > 100);
+    }
+
+    /// JSON pointers of every number in `v`.
+    fn numbers_in(v: &Value, at: String) -> Vec<String> {
+        match v {
+            Value::Number(_) => vec![at],
+            Value::Array(a) => a
+                .iter()
+                .enumerate()
+                .flat_map(|(i, x)| numbers_in(x, format!("{at}/{i}")))
+                .collect(),
+            Value::Object(o) => o
+                .iter()
+                .flat_map(|(k, x)| numbers_in(x, format!("{at}/{k}")))
+                .collect(),
+            _ => Vec::new(),
+        }
+    }
 }

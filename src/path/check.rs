@@ -41,7 +41,8 @@ fn blend(b: &Blend) -> Check {
 fn hermite(h: &Hermite) -> Check {
     point("curve start", h.start, MAX_POSITION_M)?;
     point("curve end", h.end, MAX_POSITION_M)?;
-    within("curve length", h.lambda, f64::MIN_POSITIVE, MAX_POSITION_M)
+    within("curve length", h.lambda, f64::MIN_POSITIVE, MAX_POSITION_M)?;
+    h.check_state()
 }
 
 fn curve(c: &Curve) -> Check {
