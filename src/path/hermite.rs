@@ -81,7 +81,7 @@ impl Hermite {
             lk *= self.lambda;
             for i in 0..3 {
                 let term = c[i] * lk;
-                if !(term.abs() <= 1e6 * scale) {
+                if term.is_nan() || term.abs() > 1e6 * scale {
                     return Err(format!(
                         "a curve's power term {term:e} for a length of {scale:e} m"
                     ));
