@@ -1,16 +1,15 @@
 //! Engine states (fmi2GetFMUstate / serialization) round trip: a state saved anywhere in a
 //! program — every corner mode and feed law, servo on and off, under feed override and hold, at
 //! ticks and between them — passes the restore checks, and the restored engine runs on tick for
-//! tick, bit for bit, as the one it was saved from. And a state is data, never trusted: states
-//! with fields set to values no run produces (counters, indices, magnitudes, relations) are
-//! refused with a message.
+//! tick, bit for bit, as the one it was saved from. (That states no run produces are refused is
+//! tested in src/engine/state.rs and, through the C ABI, in tests/fmu_bounds.rs.)
 #![allow(unused_crate_dependencies)]
 
 use cnc_motion::config::{CornerMode, Machine};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::ProfileKind;
 
-pub const KITCHEN_SINK: &str = include_str!("data/kitchen_sink.ngc");
+const KITCHEN_SINK: &str = include_str!("data/kitchen_sink.ngc");
 const TOOLS: &str = "[tool.1]\nradius_mm = 2\nlength_mm = 10\n";
 
 fn machine(corner: CornerMode, profile: ProfileKind) -> Machine {
@@ -68,14 +67,20 @@ fn round_trips(text: &str, m: &Machine, servo: bool, every: u64) -> Vec<Vec<u8>>
 }
 
 #[test]
-fn states_taken_anywhere_are_accepted_and_run_on_identically() {
+fn states_taken_anywhere_in_every_corner_mode_are_accepted_and_run_on_identically() {
+    // The servo on where the path stage keeps the most state (smooth chains, transitions).
     for corner in CornerMode::ALL {
-        let n = round_trips(KITCHEN_SINK, &machine(corner, ProfileKind::Scurve7), true, 211).len();
-        assert!(n > 50, "{corner:?}: {n} states");
+        let servo = matches!(corner, CornerMode::Smooth | CornerMode::Polynomial);
+        let n = round_trips(KITCHEN_SINK, &machine(corner, ProfileKind::Scurve7), servo, 307).len();
+        assert!(n > 40, "{corner:?}: {n} states");
     }
+}
+
+#[test]
+fn states_taken_anywhere_with_every_feed_law_are_accepted_and_run_on_identically() {
     for profile in ProfileKind::ALL {
-        round_trips(KITCHEN_SINK, &machine(CornerMode::Smooth, profile), false, 503);
+        round_trips(KITCHEN_SINK, &machine(CornerMode::Smooth, profile), false, 997);
     }
     let default = include_str!("../resources/default.ngc");
-    round_trips(default, &Machine::default(), true, 97);
+    round_trips(default, &Machine::default(), true, 193);
 }
