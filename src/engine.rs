@@ -9,6 +9,7 @@
 mod outputs;
 mod state;
 
+pub use crate::valid::MAX_TIME_S;
 pub use outputs::Outputs;
 
 use crate::config::Machine;
@@ -26,7 +27,6 @@ use std::collections::VecDeque;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
-pub use crate::valid::MAX_TIME_S;
 /// Ticks stepped before drives that could not take a rest in closed form are asked again.
 const REST_RETRY: u64 = 64;
 /// Fewest ticks at rest worth the closed form (shorter rests are stepped: the same result as

@@ -216,16 +216,17 @@ fn corrupted_states_are_refused_or_run_with_finite_outputs() {
                 assert_eq!(fmu.step(c, n as f64 * 1e-3, 1e-3), OK);
                 n += 1;
             }
-            states.push((program, fmu.serialize(c)));
+            states.push((program, fmu.serialize(c), fmu.outputs(c)));
         }
         fmu.free(c);
     }
     let mut outcomes: BTreeMap<(&str, &str), usize> = BTreeMap::new();
-    for (k, (program, state)) in states.iter().enumerate() {
+    for (k, (program, state, outputs)) in states.iter().enumerate() {
         let c = fmu.instantiate("target");
         assert_eq!(fmu.init(c, *program), OK);
-        // The state itself restores and runs.
+        // The state itself restores, with the outputs it was saved with.
         assert_eq!(fmu.restore(c, state), OK, "{}", fmu.last_log());
+        assert_eq!(&fmu.outputs(c), outputs);
         for case in 0..cases {
             PROGRESS.fetch_add(1, Ordering::SeqCst);
             let (bytes, kind) = corrupt(&mut rng, state);

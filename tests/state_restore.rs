@@ -42,6 +42,11 @@ fn round_trips(text: &str, m: &Machine, servo: bool, every: u64) -> Vec<Vec<u8>>
             if let Err(e) = b.restore_state(&bytes) {
                 panic!("state at step {k} (t = {} s) refused: {e}", a.time());
             }
+            // The outputs as they were, before any step.
+            assert_eq!(
+                (a.tick(), a.axes(), a.contour_error()),
+                (b.tick(), b.axes(), b.contour_error())
+            );
             let mut a2 = a.clone();
             for _ in 0..20 {
                 a2.advance(1e-3).unwrap();

@@ -55,6 +55,7 @@ impl Engine {
             .map_err(|e| format!("engine state: {e}"))?;
         restored.program = self.program.clone();
         restored.reader.attach_text(self.program.clone());
+        restored.refresh_outputs();
         *self = restored;
         Ok(())
     }
