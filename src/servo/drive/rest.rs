@@ -156,3 +156,77 @@ fn power(m: &Map, mut n: u64) -> Map {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::servo::ServoParams;
+
+    /// A drive `ms` after a step of its command from 0 to `at` (a load on the table).
+    fn settling(p: ServoParams, at: f64, load: f64, ms: usize) -> (ServoAxis, AxisCommand) {
+        let mut d = ServoAxis::new(p, 0.0);
+        let cmd = AxisCommand {
+            position: at,
+            ..AxisCommand::default()
+        };
+        for _ in 0..ms {
+            d.step(&cmd, load, 1e-3);
+        }
+        (d, cmd)
+    }
+
+    #[test]
+    fn a_rest_in_closed_form_is_the_stepped_rest() {
+        let default = ServoParams::default();
+        let scale = ServoParams {
+            linear_scale: 1.0,
+            ..default
+        };
+        let ideal = ServoParams {
+            encoder_counts: 0.0,
+            ..default
+        };
+        // 0.0012 m is a whole number of counts (the count is held); every drive under a load,
+        // still but not settled (its decay is the closed form's to follow) and settled.
+        let cases = [(default, 1.2e-3), (scale, 1.234_567e-3), (ideal, 1.234_567e-3)];
+        for ((p, at), ms) in cases.into_iter().flat_map(|c| [(c, 400), (c, 3000)]) {
+            let (mut closed, cmd) = settling(p, at, 150.0, ms);
+            let v0 = closed.state().velocity;
+            let mut stepped = closed.clone();
+            assert!(closed.rest(&cmd, 150.0, 2000, 1e-3), "{p:?}");
+            for _ in 0..2000 {
+                stepped.step(&cmd, 150.0, 1e-3);
+            }
+            let (a, b) = (closed.state(), stepped.state());
+            assert!((a.position - b.position).abs() < 1e-15, "{a:?} {b:?}");
+            assert!((a.velocity - b.velocity).abs() < 1e-12, "{a:?} {b:?}");
+            assert!((a.motor_torque - b.motor_torque).abs() < 1e-12, "{a:?} {b:?}");
+            assert!(
+                (a.drive_force.abs() - 150.0).abs() < 1e-6,
+                "the screw holds the load: {a:?}"
+            );
+            if ms == 400 {
+                assert!(
+                    v0.abs() > 1e-3 * a.velocity.abs().max(1e-15),
+                    "still moving at {v0:e} m/s"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_moving_or_saturated_drive_is_not_at_rest() {
+        let p = ServoParams::default();
+        let (mut d, cmd) = settling(p, 1.2e-3, 0.0, 3000);
+        let moving = AxisCommand {
+            velocity: 0.01,
+            ..cmd
+        };
+        assert!(!d.clone().rest(&moving, 0.0, 2000, 1e-3));
+        // A load beyond the peak torque pushes the table away: not still.
+        let mut pushed = d.clone();
+        pushed.step(&cmd, 1e5, 1e-2);
+        assert!(!pushed.rest(&cmd, 1e5, 2000, 1e-3));
+        assert!(d.rest(&cmd, 0.0, 2000, 1e-3));
+    }
+}
