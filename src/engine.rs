@@ -1,5 +1,16 @@
 //! The motion engine: reader → path → planner → interpolator (→ servo), as used by the CLI and
 //! the FMU. Plain data throughout, so the whole state can be cloned and serialized.
+//!
+//! Time is counted in whole interpolation ticks plus the fraction of a period past the last one:
+//! a communication point within [`SAME_INSTANT_S`] of a tick is that tick, however the importer
+//! formed its time, so every tick is seen at h = T and the drives always step whole ticks of
+//! exactly T (the same sub-steps, bit for bit, after an hour as after a second).
+
+mod outputs;
+mod state;
+
+pub use crate::valid::MAX_TIME_S;
+pub use outputs::Outputs;
 
 use crate::config::Machine;
 use crate::error::ProgramError;
@@ -8,20 +19,23 @@ use crate::interp::{Interpolator, Tick};
 use crate::path::{PathBlock, PathBuilder};
 use crate::plan::{FeedControl, Planned, Planner, Replan};
 use crate::servo::{AxisCommand, AxisState, ServoAxis};
-use crate::tolerance::PERIOD_SLACK;
+use crate::tolerance::SAME_INSTANT_S;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 
-/// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
-// 3: reader NC state (tools, offsets, compensation, parameters); 4: O-word flow, G93, inch setup;
-// 5: override and hold in the plan stage; 6: the smooth mode's held sub-tolerance moves;
-// 7: reader: motion modes G5…, `%`, splines, work rotations, queued blocks kept, cycle words;
-// 8: seed 004's transition in time (no arc-length table), chains' source-line marks.
-const STATE_VERSION: u32 = 8;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
+/// Ticks stepped before drives that could not take a rest in closed form are asked again.
+const REST_RETRY: u64 = 64;
+/// Fewest ticks at rest worth the closed form (shorter rests are stepped: the same result as
+/// with any other step size, to rounding, and cheaper).
+const REST_MIN_TICKS: u64 = 1000;
+/// Ticks one `advance` steps one by one at most (motion, and drives settling after it; ≈ 5–10 s
+/// of computing): a longer step is refused when it gets there. Ticks at rest with the drives
+/// still cost nothing (closed form).
+pub const MAX_STEPPED_TICKS: u64 = 10_000_000;
 
 /// Runs one program on one machine.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -40,16 +54,19 @@ pub struct Engine {
     tick: Tick,
     /// Number of interpolation ticks done (tick n is at n·T).
     ticks: u64,
-    time: f64,
+    /// Time past tick `ticks`, in periods (0 ≤ phase < 1): a communication point between ticks.
+    phase: f64,
     /// Feed override and hold (plan stage).
     control: FeedControl,
-    /// The three drives when the servo model is on, and the time they have reached.
+    /// The three drives when the servo model is on (at the engine's time).
     drives: Option<Vec<ServoAxis>>,
-    servo_time: f64,
     load_force: Vec3,
     motion_blocks: u64,
-    /// Time of the tick at which all motion was done (s).
-    finish_time: Option<f64>,
+    /// The tick at which all motion was done.
+    finish_tick: Option<u64>,
+    /// What the outputs read, computed once per step.
+    #[serde(skip)]
+    outputs: Outputs,
 }
 
 impl Engine {
@@ -78,16 +95,17 @@ impl Engine {
             program_done: false,
             tick,
             ticks: 0,
-            time: 0.0,
+            phase: 0.0,
             control: FeedControl::new(machine),
             drives: None,
-            servo_time: 0.0,
             load_force: [0.0; 3],
             motion_blocks: 0,
-            finish_time: None,
+            finish_tick: None,
+            outputs: Outputs::default(),
         };
         // Read ahead before the first tick, as an NC does before cycle start.
         engine.refill()?;
+        engine.refresh_outputs();
         Ok(engine)
     }
 
@@ -98,8 +116,13 @@ impl Engine {
                 .map(|i| ServoAxis::new(self.machine.servo[i], self.tick.p[i]))
                 .collect()
         });
-        self.servo_time = self.time;
+        self.refresh_outputs();
         self
+    }
+
+    /// Whether the drives are simulated.
+    pub fn servo(&self) -> bool {
+        self.drives.is_some()
     }
 
     pub fn machine(&self) -> &Machine {
@@ -110,9 +133,23 @@ impl Engine {
         &self.program
     }
 
-    /// Internal time (s).
+    /// Internal time (s): n·T at tick n.
     pub fn time(&self) -> f64 {
-        self.time
+        self.time_of(self.ticks, self.phase)
+    }
+
+    /// Interpolation ticks done.
+    pub fn ticks(&self) -> u64 {
+        self.ticks
+    }
+
+    fn time_of(&self, ticks: u64, phase: f64) -> f64 {
+        let t = ticks as f64 * self.machine.interpolation_period;
+        if phase == 0.0 {
+            t
+        } else {
+            t + phase * self.machine.interpolation_period
+        }
     }
 
     /// The latest interpolator output (held between ticks).
@@ -139,31 +176,23 @@ impl Engine {
 
     /// Time of the first tick with all motion done.
     pub fn finish_time(&self) -> Option<f64> {
-        self.finish_time
+        self.finish_tick.map(|n| self.time_of(n, 0.0))
     }
 
     /// Actual axis states after the drives (equal to the command when the servo is off).
     pub fn axes(&self) -> [AxisState; 3] {
-        if let Some(d) = &self.drives {
-            return [d[0].state(), d[1].state(), d[2].state()];
-        }
-        let mut out = [AxisState::default(); 3];
-        for (i, o) in out.iter_mut().enumerate() {
-            o.position = self.tick.p[i];
-            o.velocity = self.tick.v[i];
-        }
-        out
+        self.outputs.axes
     }
 
     /// Distance of the actual tool point from the programmed path (m), measured from the tangent
     /// line at the commanded point.
     pub fn contour_error(&self) -> f64 {
-        let axes = self.axes();
-        let e: Vec3 = std::array::from_fn(|i| axes[i].position - self.tick.p[i]);
-        let u = self.tick.tangent;
-        let along = crate::path::dot(e, u);
-        let normal = crate::path::sub(e, crate::path::scale(u, along));
-        crate::path::norm(normal)
+        self.outputs.contour_error
+    }
+
+    /// Everything the outputs read, as of the end of the last step.
+    pub fn outputs(&self) -> &Outputs {
+        &self.outputs
     }
 
     /// The block being executed and the path time left in it (s), None between blocks.
@@ -199,55 +228,126 @@ impl Engine {
 
     /// Advance one interpolation period.
     pub fn step(&mut self) -> Result<&Tick, ProgramError> {
-        let t = (self.ticks + 1) as f64 * self.machine.interpolation_period;
-        self.advance(t - self.time)?;
+        self.run_to(self.ticks + 1, 0.0)?;
         Ok(&self.tick)
     }
 
-    /// Advance the time by h > 0: interpolator ticks at every multiple of the period (zero-order
-    /// hold between), servo sub-stepped continuously.
+    /// Advance the time by h ≥ 0: interpolator ticks at every multiple of the period (zero-order
+    /// hold between), drives sub-stepped continuously. An end within [`SAME_INSTANT_S`] of a
+    /// tick is that tick.
     pub fn advance(&mut self, h: f64) -> Result<(), ProgramError> {
         let period = self.machine.interpolation_period;
-        let t_end = self.time + h.max(0.0);
-        // A tick within a billionth of a period of the end belongs to this step (rounding of t).
-        let slack = PERIOD_SLACK * period;
-        loop {
-            let t_tick = (self.ticks + 1) as f64 * period;
-            if t_tick > t_end + slack {
-                break;
-            }
-            let t = t_tick.min(t_end);
-            self.servo_to(t);
-            self.time = t;
-            self.ticks += 1;
-            self.interpolate(t_tick)?;
+        let end = self.phase + h.max(0.0) / period;
+        if self.time() + h > MAX_TIME_S || h.is_nan() {
+            return Err(self.error(format!(
+                "a step of {h} s from t = {} s ends beyond the engine's time range ({MAX_TIME_S:e} s)",
+                self.time()
+            )));
         }
-        self.servo_to(t_end);
-        self.time = t_end;
+        let whole = end.round();
+        let (ticks, phase) = if (end - whole).abs() * period <= SAME_INSTANT_S {
+            (whole, 0.0)
+        } else {
+            (end.floor(), end - end.floor())
+        };
+        self.run_to(self.ticks + ticks as u64, phase)
+    }
+
+    /// Run to tick `ticks` plus `phase` periods.
+    fn run_to(&mut self, ticks: u64, phase: f64) -> Result<(), ProgramError> {
+        let (mut stepped, mut next_rest) = (0u64, 0u64);
+        while self.ticks < ticks {
+            // At rest for good, for long: the rest of the step at once, once the drives are still
+            // (tried again REST_RETRY ticks after a drive could not take it).
+            if stepped >= next_rest && ticks - self.ticks >= REST_MIN_TICKS && self.quiescent() {
+                if self.rest_to(ticks) {
+                    break;
+                }
+                next_rest = stepped + REST_RETRY;
+            }
+            if stepped == MAX_STEPPED_TICKS {
+                self.refresh_outputs();
+                return Err(self.error(format!(
+                    "a step of more than {MAX_STEPPED_TICKS} ticks with motion or drives not at rest \
+                     (stopped at t = {} s): take shorter steps",
+                    self.time()
+                )));
+            }
+            stepped += 1;
+            self.drives_to(1.0);
+            self.ticks += 1;
+            self.phase = 0.0;
+            self.interpolate(self.time())?;
+        }
+        if phase > self.phase {
+            self.drives_to(phase);
+            self.phase = phase;
+        }
+        self.refresh_outputs();
         Ok(())
     }
 
-    /// Drives from their time to t with the current command held (zero-order hold).
-    fn servo_to(&mut self, t: f64) {
-        let Some(drives) = self.drives.as_mut() else {
-            return;
-        };
-        let dt = t - self.servo_time;
-        // A remainder of rounding size (a communication point a hair past a tick) is not a step:
-        // it would start a servo period on the new command and make the result depend on how the
-        // importer sums its time.
-        if dt <= PERIOD_SLACK * self.machine.interpolation_period {
-            return;
+    /// An error at the line being executed.
+    fn error(&self, message: String) -> ProgramError {
+        ProgramError::new(self.reader.file(), self.tick.line.max(1), 1, message)
+    }
+
+    /// Nothing will move the command before the inputs change: the program is finished, or a
+    /// hold has brought the path to rest.
+    fn quiescent(&self) -> bool {
+        self.interp.idle()
+            && self.queue.is_empty()
+            && !self.control.pending()
+            && (self.tick.finished || self.control.hold_applied())
+    }
+
+    /// With the command at rest for good: to tick `ticks` at once if the drives are still (their
+    /// closed form at rest; the ticks only move the clock). False, with nothing changed, if not.
+    fn rest_to(&mut self, ticks: u64) -> bool {
+        let n = ticks - self.ticks;
+        let still = self.drives.iter().flatten().all(ServoAxis::still);
+        if self.phase != 0.0 || !still {
+            return false;
         }
-        for (i, d) in drives.iter_mut().enumerate() {
-            let cmd = AxisCommand {
-                position: self.tick.p[i],
-                velocity: self.tick.v[i],
-                acceleration: self.tick.a[i],
-            };
-            d.step(&cmd, self.load_force[i], dt);
+        if let Some(drives) = &self.drives {
+            let period = self.machine.interpolation_period;
+            let mut next = drives.clone();
+            for (i, d) in next.iter_mut().enumerate() {
+                if !d.rest(&self.command(i), self.load_force[i], n, period) {
+                    return false;
+                }
+            }
+            self.drives = Some(next);
         }
-        self.servo_time = t;
+        self.ticks = ticks;
+        self.tick.t = self.time();
+        true
+    }
+
+    /// The command of axis `i` (held between ticks).
+    fn command(&self, i: usize) -> AxisCommand {
+        AxisCommand {
+            position: self.tick.p[i],
+            velocity: self.tick.v[i],
+            acceleration: self.tick.a[i],
+        }
+    }
+
+    /// Drives from the engine's time to `phase` periods past tick `ticks` (1: the next tick),
+    /// the current command held (zero-order hold).
+    fn drives_to(&mut self, phase: f64) {
+        // (1 − 0)·T is T exactly: whole ticks are always the same step.
+        let dt = (phase - self.phase) * self.machine.interpolation_period;
+        let commands: [AxisCommand; 3] = std::array::from_fn(|i| self.command(i));
+        if let Some(drives) = self.drives.as_mut() {
+            for (i, d) in drives.iter_mut().enumerate() {
+                d.step(&commands[i], self.load_force[i], dt);
+            }
+        }
+    }
+
+    fn refresh_outputs(&mut self) {
+        self.outputs = Outputs::of(&self.tick, self.drives.as_deref());
     }
 
     /// One interpolation tick at time `t`.
@@ -286,8 +386,8 @@ impl Engine {
             && self.planner.pending() == 0
             && self.control.held() == 0;
         let tick = self.interp.sample(t, finished);
-        if finished && self.finish_time.is_none() {
-            self.finish_time = Some(t);
+        if finished && self.finish_tick.is_none() {
+            self.finish_tick = Some(self.ticks);
         }
         self.tick = tick;
         Ok(())
@@ -331,35 +431,5 @@ impl Engine {
             }
         }
         Ok(true)
-    }
-
-    /// Serialize the whole state (not the program text) for fmi2GetFMUstate / serialization.
-    pub fn save_state(&self) -> Vec<u8> {
-        let mut out = STATE_VERSION.to_le_bytes().to_vec();
-        // Plain data only, so this cannot fail; an empty body would be refused by restore_state.
-        out.extend(bincode::serialize(self).unwrap_or_default());
-        out
-    }
-
-    /// Restore a state written by `save_state` for the same program and machine.
-    pub fn restore_state(&mut self, bytes: &[u8]) -> Result<(), String> {
-        if bytes.len() < 4 {
-            return Err(format!("engine state too short: {} bytes", bytes.len()));
-        }
-        let version = u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
-        if version != STATE_VERSION {
-            return Err(format!(
-                "engine state version {version}, expected {STATE_VERSION}"
-            ));
-        }
-        let mut restored: Engine =
-            bincode::deserialize(&bytes[4..]).map_err(|e| format!("engine state: {e}"))?;
-        if restored.machine != self.machine {
-            return Err("engine state was saved for another machine configuration".into());
-        }
-        restored.program = self.program.clone();
-        restored.reader.attach_text(self.program.clone());
-        *self = restored;
-        Ok(())
     }
 }

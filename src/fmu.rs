@@ -11,13 +11,15 @@ use std::sync::{Arc, OnceLock};
 /// The default program shipped in the FMU's resources (and used by `make demo`).
 pub const DEFAULT_PROGRAM: &str = include_str!("../resources/default.ngc");
 
-/// Version of the serialized model state (see `serialize`); 3: `machineFile`.
-const STATE_VERSION: u32 = 3;
+/// Version of the serialized model state (see `serialize`); 3: `machineFile`; 4: postcard
+/// instead of bincode.
+const STATE_VERSION: u32 = 4;
 
 /// The model as the FMI layer sees it.
 #[derive(Clone, Debug)]
 pub struct CncMotionFmu(pub CncMotion);
 
+#[inline]
 fn table() -> &'static [Entry<Slot>] {
     static TABLE: OnceLock<Vec<Entry<Slot>>> = OnceLock::new();
     TABLE.get_or_init(model::rows)
@@ -58,8 +60,10 @@ impl fmi2::Model for CncMotionFmu {
         })
     }
 
+    #[inline]
     fn get(&self, index: usize) -> Value {
-        self.0.get(table()[index].slot, table()[index].axis)
+        let e = &table()[index];
+        self.0.get(e.slot, e.axis)
     }
 
     fn set(&mut self, index: usize, value: Value) -> Result<(), String> {
@@ -74,33 +78,67 @@ impl fmi2::Model for CncMotionFmu {
         self.0.do_step(h)
     }
 
-    /// bincode of (model version, parameters and inputs, program text and engine state).
+    /// The model version, then postcard of (parameters and inputs, program text and engine
+    /// state).
     fn serialize(&self) -> Vec<u8> {
         let engine = self
             .0
             .engine
             .as_ref()
             .map(|e| (e.program().text().unwrap_or_default().to_string(), e.save_state()));
-        bincode::serialize(&(STATE_VERSION, &self.0, engine)).unwrap_or_default()
+        let mut out = STATE_VERSION.to_le_bytes().to_vec();
+        out.extend(postcard::to_stdvec(&(&self.0, engine)).unwrap_or_default());
+        out
     }
 
+    /// Every part checked before it is used: the version, the parameters and inputs as
+    /// fmi2Set*/initialization check them, the program as initialization checks it, and the
+    /// engine state field by field (`Engine::restore_state`).
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String> {
-        type Saved = (u32, CncMotion, Option<(String, Vec<u8>)>);
-        let (version, mut m, engine): Saved =
-            bincode::deserialize(bytes).map_err(|e| format!("model state: {e}"))?;
+        let Some((version, body)) = bytes.split_first_chunk::<4>() else {
+            return Err(format!("model state too short: {} bytes", bytes.len()));
+        };
+        let version = u32::from_le_bytes(*version);
         if version != STATE_VERSION {
             return Err(format!("model state version {version}, expected {STATE_VERSION}"));
         }
+        type Saved = (CncMotion, Option<(String, Vec<u8>)>);
+        let ((mut m, engine), rest): (Saved, _) =
+            postcard::take_from_bytes(body).map_err(|e| format!("model state: {e}"))?;
+        if !rest.is_empty() {
+            return Err(format!("model state: {} bytes after its end", rest.len()));
+        }
+        check_inputs(&m).map_err(|e| format!("model state: {e}"))?;
         if let Some((text, bytes)) = engine {
+            m.machine.check().map_err(|e| format!("model state: {e}"))?;
             let mut e =
                 Engine::new(Arc::from(text), m.source_name(), &m.machine).map_err(|e| e.to_string())?;
             e.restore_state(&bytes)?;
+            if e.servo() != m.servo_enabled {
+                return Err("model state: the engine's drives do not match servo.enabled".into());
+            }
             m.engine = Some(e);
         }
         m.resources = self.0.resources.clone();
         self.0 = m;
         Ok(())
     }
+}
+
+/// The inputs and index parameters of a restored model within what fmi2Set* accepts.
+fn check_inputs(m: &CncMotion) -> Result<(), String> {
+    if !(0.0..=2.0).contains(&m.feed_override) {
+        return Err(format!("feedOverride = {} out of range (0 … 2)", m.feed_override));
+    }
+    for f in m.load_force {
+        crate::config::ranges::check_load_force(f)?;
+    }
+    let profiles = 0..=crate::feed::ProfileKind::ALL.len() as i32;
+    let corners = 0..=crate::config::CornerMode::ALL.len() as i32;
+    if !(profiles.contains(&m.profile_index) && corners.contains(&m.corner_index)) {
+        return Err("machine.profileIndex or machine.cornerIndex out of range".into());
+    }
+    Ok(())
 }
 
 /// modelDescription.xml of CncMotion, start values read from a default model.

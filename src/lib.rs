@@ -28,6 +28,7 @@ pub mod path;
 pub mod plan;
 pub mod servo;
 pub mod tolerance;
+pub mod valid;
 
 /// A point or vector in machine axes X, Y, Z (m).
 pub type Vec3 = [f64; 3];

@@ -206,14 +206,12 @@ impl Default for CncMotion {
 }
 
 impl CncMotion {
-    /// The value of `slot` on axis `i`.
+    /// The value of `slot` on axis `i`. Outputs read what the engine computed once at the end
+    /// of the step (zeros before initialization).
     pub fn get(&self, slot: Slot, i: usize) -> Value {
         let (m, a) = (&self.machine, &self.machine.axes[i]);
-        let (t, d) = self
-            .engine
-            .as_ref()
-            .map(|e| (*e.tick(), e.axes()[i]))
-            .unwrap_or_default();
+        let e = self.engine.as_ref();
+        let real = |f: &dyn Fn(&Engine) -> f64| Value::Real(e.map_or(0.0, f));
         match slot {
             Slot::Program => Value::String(self.program.clone()),
             Slot::ProgramFile => Value::String(self.program_file.clone()),
@@ -230,13 +228,37 @@ impl CncMotion {
             Slot::FeedOverride => Value::Real(self.feed_override),
             Slot::FeedHold => Value::Boolean(self.feed_hold),
             Slot::LoadForce => Value::Real(self.load_force[i]),
-            Slot::Command(k) => Value::Real([t.p, t.v, t.a, t.j][k][i]),
-            Slot::Path(k) => Value::Real([t.feed, t.path_acceleration, t.path_jerk, t.distance][k]),
-            Slot::Line => Value::Integer(t.line as i32),
-            Slot::Finished => Value::Boolean(t.finished),
-            #[rustfmt::skip]
-            Slot::Drive(k) => Value::Real([d.position, d.velocity, d.following_error, d.motor_torque, d.drive_force][k]),
-            Slot::ContourError => Value::Real(self.engine.as_ref().map_or(0.0, |e| e.contour_error())),
+            Slot::Command(k) => real(&|e| {
+                let t = e.tick();
+                (match k {
+                    0 => t.p,
+                    1 => t.v,
+                    2 => t.a,
+                    _ => t.j,
+                })[i]
+            }),
+            Slot::Path(k) => real(&|e| {
+                let t = e.tick();
+                match k {
+                    0 => t.feed,
+                    1 => t.path_acceleration,
+                    2 => t.path_jerk,
+                    _ => t.distance,
+                }
+            }),
+            Slot::Line => Value::Integer(e.map_or(0, |e| e.tick().line as i32)),
+            Slot::Finished => Value::Boolean(e.is_some_and(|e| e.tick().finished)),
+            Slot::Drive(k) => real(&|e| {
+                let d = &e.outputs().axes[i];
+                match k {
+                    0 => d.position,
+                    1 => d.velocity,
+                    2 => d.following_error,
+                    3 => d.motor_torque,
+                    _ => d.drive_force,
+                }
+            }),
+            Slot::ContourError => real(&|e| e.outputs().contour_error),
         }
     }
 
@@ -369,6 +391,6 @@ impl CncMotion {
         e.set_feed_hold(self.feed_hold);
         e.set_load_force(self.load_force);
         e.advance(h).map_err(|e| e.to_string())?;
-        crate::config::ranges::check_outputs(e)
+        e.check_outputs()
     }
 }

@@ -134,7 +134,7 @@ fn non_finite_outputs_are_an_error_not_nan() {
     let mut failed = None;
     for _ in 0..200 {
         e.advance(1e-3).unwrap();
-        if let Err(m) = cnc_motion::config::ranges::check_outputs(&e) {
+        if let Err(m) = e.check_outputs() {
             failed = Some(m);
             break;
         }

@@ -101,7 +101,6 @@ pub struct Machine {
     pub chord_tolerance: f64,
     /// Arc end points may miss the circle by this much (m, G21; × 2.54 in G20 programs) or by
     /// 0.1 % of the radius.
-    #[serde(default = "default_arc_tolerance")]
     pub arc_radius_tolerance: f64,
     /// Largest feed, also the rapid (G0) feed (m/s).
     pub max_feed: f64,
@@ -118,7 +117,6 @@ pub struct Machine {
     pub axes: [AxisLimits; 3],
     pub servo: [ServoParams; 3],
     /// Block delete, optional stop, tool table, work offsets, home positions.
-    #[serde(default)]
     pub nc: NcSetup,
 }
 
@@ -146,10 +144,6 @@ impl Default for Machine {
             nc: NcSetup::default(),
         }
     }
-}
-
-fn default_arc_tolerance() -> f64 {
-    crate::gcode::DEFAULT_ARC_TOLERANCE_M
 }
 
 /// `[axis.x]` in the machine file.

@@ -36,7 +36,6 @@ pub const WORK_SYSTEMS: [&str; 9] = [
 
 /// The machine's NC setup (SI).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
 pub struct NcSetup {
     /// `/` at the start of a line skips the line (true) or is ignored (false).
     pub block_delete: bool,
@@ -51,10 +50,8 @@ pub struct NcSetup {
     /// G28 and G30 home positions (m, machine coordinates).
     pub home: [Vec3; 2],
     /// O-word loops: most jumps back (loop passes) in one run of a program.
-    #[serde(default = "default_max_loop_iterations")]
     pub max_loop_iterations: u64,
     /// An inch machine (`units = "inch"`): programs start in G20.
-    #[serde(default)]
     pub inch: bool,
 }
 
@@ -62,11 +59,25 @@ pub struct NcSetup {
 pub const DEFAULT_MAX_LOOP_ITERATIONS: u64 = 1_000_000;
 pub const MAX_LOOP_ITERATIONS: u64 = 1_000_000_000;
 
-fn default_max_loop_iterations() -> u64 {
-    DEFAULT_MAX_LOOP_ITERATIONS
-}
-
 impl NcSetup {
+    /// A restored setup (FMU state; G10 changes the reader's copy): the machine-file ranges.
+    pub fn check_state(&self) -> Result<(), String> {
+        use crate::valid::{at_most, point, within};
+        for (&n, t) in &self.tools {
+            within("tool number", f64::from(n), 1.0, f64::from(MAX_TOOL))?;
+            within("tool radius", t.radius, 0.0, MAX_TOOL_RADIUS_M)?;
+            within("tool length", t.length, -MAX_OFFSET_M, MAX_OFFSET_M)?;
+        }
+        for p in self.work_offsets.iter().chain(&self.home) {
+            point("work offset or home", *p, MAX_OFFSET_M)?;
+        }
+        at_most(
+            "max_loop_iterations",
+            self.max_loop_iterations,
+            MAX_LOOP_ITERATIONS,
+        )
+    }
+
     /// `max_loop_iterations`, 1 … MAX_LOOP_ITERATIONS.
     pub fn set_max_loop_iterations(&mut self, n: i64) -> Result<(), RangeError> {
         if n < 1 || n as u64 > MAX_LOOP_ITERATIONS {

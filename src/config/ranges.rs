@@ -408,37 +408,6 @@ pub fn check_load_force(x: f64) -> Result<f64, String> {
     }
 }
 
-/// Outputs are never NaN or infinite with status OK: the first one that is, named.
-pub fn check_outputs(e: &crate::engine::Engine) -> Result<(), String> {
-    let t = e.tick();
-    let axes = e.axes();
-    let named: [(&str, [f64; 3]); 6] = [
-        ("command.position", t.p),
-        ("command.velocity", t.v),
-        ("command.acceleration", t.a),
-        ("position", axes.map(|s| s.position)),
-        ("velocity", axes.map(|s| s.velocity)),
-        ("motorTorque", axes.map(|s| s.motor_torque)),
-    ];
-    for (name, values) in named {
-        for (axis, v) in ["x", "y", "z"].iter().zip(values) {
-            if !v.is_finite() {
-                return Err(format!(
-                    "{axis}.{name} = {v} at t = {} s: the model diverged (check the servo parameters)",
-                    e.time()
-                ));
-            }
-        }
-    }
-    if !(t.feed.is_finite() && e.contour_error().is_finite()) {
-        return Err(format!(
-            "path.feed or path.contourError not finite at t = {} s",
-            e.time()
-        ));
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -172,6 +172,37 @@ impl Profile {
     }
 }
 
+impl Profile {
+    /// A restored profile: of the machine's law, its duration, phases, length and exit speed
+    /// ones a plan gives (finite everywhere: `crate::valid::numbers`).
+    pub fn check_state(&self, kind: ProfileKind) -> Result<(), String> {
+        use crate::valid::{within, MAX_SPEED_M_S};
+        let same = matches!(
+            (self, kind),
+            (Profile::Scurve7(_), ProfileKind::Scurve7)
+                | (Profile::Quintic(_), ProfileKind::Quintic)
+                | (Profile::Jerk15(_), ProfileKind::Jerk15)
+                | (Profile::Mixed57(_), ProfileKind::Mixed57)
+                | (Profile::Trapezoid(_), ProfileKind::Trapezoid)
+        );
+        if !same {
+            return Err(format!("a profile of another law than the machine's {kind:?}"));
+        }
+        let most = crate::valid::MAX_TIME_S;
+        within("profile duration", self.duration(), 0.0, most)?;
+        for t in self.phases() {
+            within("profile phase", t, 0.0, most)?;
+        }
+        within(
+            "profile length",
+            self.length(),
+            0.0,
+            crate::valid::MAX_POSITION_M * 1e5,
+        )?;
+        within("profile exit speed", self.v_end(), 0.0, MAX_SPEED_M_S)
+    }
+}
+
 impl FeedLaw for Profile {
     fn duration(&self) -> f64 {
         dispatch!(self, p => p.duration())

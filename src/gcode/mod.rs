@@ -83,6 +83,33 @@ pub struct Block {
     pub path_mode: PathMode,
 }
 
+impl Block {
+    /// A restored block (`crate::valid`): its numbers within what the reader produces.
+    pub fn check_state(&self) -> Result<(), String> {
+        use crate::valid::{at_most, point, within, MAX_POSITION_M, MAX_SPEED_M_S};
+        point("block start", self.from, MAX_POSITION_M)?;
+        match self.motion {
+            Motion::Rapid { to } | Motion::Linear { to } => point("block end", to, MAX_POSITION_M)?,
+            Motion::Arc {
+                to, center, turns, ..
+            } => {
+                point("arc end", to, MAX_POSITION_M)?;
+                point("arc centre", center, MAX_POSITION_M)?;
+                at_most("arc turns", u64::from(turns), check::MAX_TURNS as u64)?;
+            }
+            Motion::Dwell { seconds } => within("dwell", seconds, 0.0, check::MAX_DWELL_S)?,
+            Motion::Stop(_) => {}
+        }
+        within("feed", self.feed, 0.0, MAX_SPEED_M_S)?;
+        if let PathMode::Blend { tolerance, q } = self.path_mode {
+            for x in tolerance.into_iter().chain(q) {
+                within("G64 P/Q", x, 0.0, check::MAX_COORDINATE_M)?;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Read the whole program once, keeping nothing, to report the first error before motion starts.
 pub fn validate(source: impl Into<ProgramSource>, file: &str) -> Result<u64, crate::error::ProgramError> {
     validate_with(Reader::new(source, file, [0.0; 3]))

@@ -52,6 +52,32 @@ impl Params {
     }
 }
 
+impl Params {
+    /// A restored store: numbers 1 … MAX_NUMBERED, at most MAX_NAMED names.
+    pub fn check_state(&self) -> Result<(), String> {
+        use crate::valid::at_most;
+        if self.numbered.keys().any(|&n| n == 0 || n > MAX_NUMBERED) {
+            return Err(format!("a numbered parameter out of range (1 … {MAX_NUMBERED})"));
+        }
+        at_most("named parameters", self.named.len() as u64, MAX_NAMED as u64)
+    }
+}
+
+impl Locals {
+    /// A restored call level: locals #1 … #LOCAL_NUMBERED, at most MAX_NAMED names.
+    pub fn check_state(&self) -> Result<(), String> {
+        use crate::valid::at_most;
+        if self.numbered.iter().any(|&(n, _)| n == 0 || n > LOCAL_NUMBERED) {
+            return Err(format!("a local parameter out of range (1 … {LOCAL_NUMBERED})"));
+        }
+        at_most(
+            "local named parameters",
+            self.named.len() as u64,
+            MAX_NAMED as u64,
+        )
+    }
+}
+
 /// Parameters local to a call level (LinuxCNC "O Codes", "Subroutines"): #1 … #30 and the named
 /// ones not starting with `_`, saved at a call and given back at its return.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]

@@ -13,6 +13,7 @@ mod modal;
 pub mod nurbs;
 mod offsets;
 mod spline;
+mod state;
 mod words;
 
 use super::params::Params;
@@ -31,14 +32,6 @@ use serde::{Deserialize, Serialize};
 /// it exceeds both.
 pub const DEFAULT_ARC_TOLERANCE_M: f64 = 0.028e-3;
 const ARC_TOLERANCE_REL: f64 = 1e-3;
-
-fn default_arc_tolerance() -> f64 {
-    DEFAULT_ARC_TOLERANCE_M
-}
-
-fn default_max_feed() -> f64 {
-    super::check::MAX_FEED_M_S
-}
 
 /// Axis indices (a, b, normal) of a plane, right-handed so that G3 is a positive rotation about
 /// the normal: G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
@@ -70,13 +63,10 @@ pub struct Reader {
     #[serde(skip)]
     lines: Lines,
     /// Absolute arc radius tolerance (m, for G21; × 2.54 in G20).
-    #[serde(default = "default_arc_tolerance")]
     arc_tolerance: f64,
     /// Largest feed (m/s): a larger F runs at this one (machine `max_feed_mm_min`).
-    #[serde(default = "default_max_feed")]
     max_feed: f64,
     /// Chord tolerance (m) of the machine: splines are approximated within a share of it.
-    #[serde(default = "spline::default_chord_tolerance")]
     chord_tolerance: f64,
     file: String,
     /// Byte offset of the next line to read.
@@ -97,51 +87,37 @@ pub struct Reader {
     /// Modal motion (group 1), None before the first and after G80.
     motion: Option<Mode>,
     done: bool,
-    #[serde(default)]
     percent: Percent,
     /// Switches, tool table, work offsets, home positions (machine file; G10 changes them).
-    #[serde(default)]
     nc: Box<NcSetup>,
     /// Outside-corner strategy of cutter compensation (G450 / G451, machine default).
-    #[serde(default)]
     corner: CutterCorner,
     /// T (selected), M6 (loaded) tool numbers; D radius register (m); tool length offset (m).
-    #[serde(default)]
     tool: offsets::ToolState,
     /// Active work system (0 = G54 … 8 = G59.3), G92 offset (m) and whether it is applied.
-    #[serde(default)]
     work: usize,
-    #[serde(default)]
     g92: Vec3,
-    #[serde(default)]
     g92_on: bool,
     /// G93 inverse-time feed (true) / G94 units per minute.
-    #[serde(default)]
     inverse_time: bool,
     /// Cutter compensation: mode, and the blocks held back for one block of look-ahead.
-    #[serde(default)]
     comp: Box<comp::Comp>,
     /// Drilling cycle words and retract mode.
-    #[serde(default)]
     cycle: cycles::Cycle,
     /// G5 continuation and the open G5.2 NURBS block.
-    #[serde(default)]
     spline: Box<spline::Splines>,
     /// Blocks decoded but not yet returned (a line can give a dwell, moves and a stop; G28 two
     /// moves, a cycle or a spline many).
-    #[serde(default)]
     pending: std::collections::VecDeque<Block>,
     #[serde(skip)]
     words: Vec<Word>,
     /// Numbered and named parameters (bounded), and the settings of the line being read.
-    #[serde(default)]
     params: Box<Params>,
     #[serde(skip)]
     sets: Sets,
     #[serde(skip)]
     line_buf: Vec<u8>,
     /// O-word control flow: subroutines seen, open loops and conditionals, calls.
-    #[serde(default)]
     flow: Box<flow::Flow>,
     /// Where the line just executed sends the cursor (an O-word jump), instead of the next line.
     #[serde(skip)]
@@ -168,7 +144,7 @@ impl Reader {
         Reader {
             lines: Lines::new(source.into()),
             arc_tolerance: DEFAULT_ARC_TOLERANCE_M,
-            max_feed: default_max_feed(),
+            max_feed: super::check::MAX_FEED_M_S,
             chord_tolerance: spline::default_chord_tolerance(),
             file: file.to_string(),
             offset: 0,
@@ -229,6 +205,11 @@ impl Reader {
     /// Give back the program after a state restore (the source is not serialized).
     pub fn attach_text(&mut self, source: impl Into<ProgramSource>) {
         self.lines = Lines::new(source.into());
+    }
+
+    /// The program's name in messages.
+    pub fn file(&self) -> &str {
+        &self.file
     }
 
     /// Byte offset of the next line to read: progress through the program.

@@ -93,6 +93,28 @@ impl Interpolator {
         }
     }
 
+    /// A restored interpolator: the block in progress checked, its time within its duration,
+    /// the rest point in range.
+    pub fn check_state(&self, kind: crate::feed::ProfileKind) -> Result<(), String> {
+        use crate::valid::{point, within, MAX_POSITION_M};
+        if let Some(c) = &self.current {
+            c.planned.check_state(kind)?;
+            if c.duration != block_duration(&c.planned) {
+                return Err("interpolator: the block's duration is not its profile's".into());
+            }
+            within("time in block", c.tau, 0.0, c.duration)?;
+        }
+        within("path time", self.time_done, 0.0, crate::valid::MAX_TIME_S)?;
+        within(
+            "path distance",
+            self.distance_done,
+            0.0,
+            crate::valid::MAX_MAGNITUDE,
+        )?;
+        point("rest point", self.rest, MAX_POSITION_M)?;
+        point("tangent", self.last_tangent, 2.0)
+    }
+
     /// Path time of all completed blocks plus the time inside the current one (s).
     pub fn path_time(&self) -> f64 {
         self.time_done + self.current.as_ref().map_or(0.0, |c| c.tau)

@@ -117,6 +117,26 @@ pub struct Chain {
 }
 
 impl Chain {
+    /// A restored chain as `push` builds it: pieces, their starts and the length in step.
+    pub fn check_state(&self) -> Result<(), String> {
+        let mut rebuilt = Chain::default();
+        for p in &self.pieces {
+            rebuilt.push(*p);
+        }
+        if self.is_empty() || rebuilt.starts != self.starts || rebuilt.length != self.length {
+            return Err("a chain's pieces, starts and length disagree".into());
+        }
+        // Source marks: one at least at each piece's start, in increasing s within the chain.
+        let in_chain = |m: &(f64, u32)| (0.0..=self.length).contains(&m.0);
+        if self.marks.len() < self.pieces.len()
+            || !self.marks.iter().all(in_chain)
+            || self.marks.windows(2).any(|w| w[1].0 < w[0].0)
+        {
+            return Err("a chain's source marks are not increasing within it".into());
+        }
+        Ok(())
+    }
+
     pub fn push(&mut self, piece: Piece) {
         self.push_marked(piece, &[]);
     }

@@ -70,6 +70,31 @@ impl Hermite {
         self.lambda
     }
 
+    /// A restored curve as `new` builds it: each power term c_k·λ^k a sum of the chord and the
+    /// end derivatives scaled by λ (bounded by a million times the larger of λ and the chord),
+    /// and the terms adding up to the chord (p(λ) is the end point).
+    pub fn check_state(&self) -> Result<(), String> {
+        let d = sub(self.end, self.start);
+        let scale = self.lambda.max(norm(d));
+        let (mut lk, mut sum) = (1.0, [0.0; 3]);
+        for c in &self.c {
+            lk *= self.lambda;
+            for i in 0..3 {
+                let term = c[i] * lk;
+                if term.is_nan() || term.abs() > 1e6 * scale {
+                    return Err(format!(
+                        "a curve's power term {term:e} for a length of {scale:e} m"
+                    ));
+                }
+                sum[i] += term;
+            }
+        }
+        if norm(sub(sum, d)) > 1e-9 * scale {
+            return Err("a curve does not end at its end point".into());
+        }
+        Ok(())
+    }
+
     /// p − start and its first three derivatives at u.
     fn poly(&self, u: f64) -> [Vec3; 4] {
         let c = &self.c;

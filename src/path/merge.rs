@@ -35,6 +35,16 @@ fn q_of(b: &Block) -> Option<f64> {
 }
 
 impl Merger {
+    /// A restored merge: its points in range, at most MAX_VERTICES of them.
+    pub fn check_state(&self) -> Result<(), String> {
+        use crate::valid::{at_most, point, MAX_POSITION_M};
+        at_most("merged vertices", self.vertices.len() as u64, MAX_VERTICES as u64)?;
+        for p in self.vertices.iter().chain([&self.to]) {
+            point("merged vertex", *p, MAX_POSITION_M)?;
+        }
+        self.first.as_ref().map_or(Ok(()), Block::check_state)
+    }
+
     pub fn new() -> Merger {
         Merger {
             first: None,

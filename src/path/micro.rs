@@ -33,6 +33,16 @@ struct Pending {
 }
 
 impl MicroMoves {
+    /// A restored run of tiny moves: its points in range, its moves checked.
+    pub fn check_state(&self) -> Result<(), String> {
+        use crate::valid::{point, within, MAX_POSITION_M};
+        let Some(p) = &self.pending else { return Ok(()) };
+        point("tiny move start", p.start, MAX_POSITION_M)?;
+        point("tiny move end", p.end, MAX_POSITION_M)?;
+        within("tiny moves' length", p.absorbed, 0.0, MAX_POSITION_M)?;
+        super::check::programmed(&p.last)
+    }
+
     /// The moves to run for `mv`, in order: none while it is held as tiny; otherwise `mv` (its
     /// start moved back over the held moves), or the held moves as one line and then `mv`.
     pub fn take(&mut self, mv: Move) -> [Option<Move>; 2] {

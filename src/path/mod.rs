@@ -20,6 +20,7 @@ mod arc;
 mod blend;
 mod budget;
 mod chain;
+mod check;
 mod corner;
 mod hermite;
 mod junction;
@@ -538,7 +539,7 @@ impl PathBuilder {
 }
 
 // Vec3 arithmetic stays these few plain functions on `[f64; 3]` rather than nalgebra's Vector3:
-// every stage passes Vec3 as plain data (Tick, Block, serde/bincode of the FMU state), they are in
+// every stage passes Vec3 as plain data (Tick, Block, serde/postcard of the FMU state), they are in
 // the hottest loops (path evaluation every tick, 1 M blocks/s look-ahead) and compile to the same
 // three multiply-adds; a wrapper type would change every record for no gain.
 /// Limits at `v_max` with the acceleration and jerk of the slowest axis (what holds whichever

@@ -152,6 +152,18 @@ pub struct SmoothBuilder {
 }
 
 impl SmoothBuilder {
+    /// A restored builder: its moves, held span and chain checked (the chain may be empty).
+    pub fn check_state(&self) -> Result<(), String> {
+        use super::check::{one_piece, pieces, programmed};
+        self.run.iter().try_for_each(programmed)?;
+        if let Some(s) = &self.held {
+            one_piece(&s.piece)?;
+            programmed(&s.first)?;
+            programmed(&s.last)?;
+        }
+        pieces(&self.chain)
+    }
+
     pub fn new() -> SmoothBuilder {
         SmoothBuilder {
             run: Vec::new(),

@@ -82,6 +82,15 @@ impl FeedControl {
         }
     }
 
+    /// A restored state: for this machine, the override in range, the held blocks checked.
+    pub fn check_state(&self, machine: &Machine) -> Result<(), String> {
+        crate::valid::within("feed override", self.feed_override, 0.0, 2.0)?;
+        if self.a_zero != FeedControl::new(machine).a_zero {
+            return Err("feed control: saved for another machine".into());
+        }
+        self.held.iter().try_for_each(PathBlock::check_state)
+    }
+
     /// Stop, or stay stopped: a hold, or an override of 0.
     pub fn holding(&self) -> bool {
         self.feed_hold || self.feed_override == 0.0

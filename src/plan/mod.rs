@@ -32,6 +32,21 @@ pub struct Planned {
     pub profile: Profile,
 }
 
+impl Planned {
+    /// A restored planned segment: its block, and a profile of the law whose exit speed is the
+    /// planned one.
+    pub fn check_state(&self, kind: ProfileKind) -> Result<(), String> {
+        use crate::valid::{within, MAX_SPEED_M_S};
+        self.block.check_state()?;
+        self.profile.check_state(kind)?;
+        within("entry speed", self.v_in, 0.0, MAX_SPEED_M_S)?;
+        if self.v_out != self.profile.v_end() {
+            return Err("a planned exit speed is not its profile's".into());
+        }
+        Ok(())
+    }
+}
+
 #[derive(Clone, Debug, Serialize, Deserialize)]
 struct Entry {
     block: PathBlock,
@@ -75,6 +90,43 @@ impl Planner {
             feed_scale: 1.0,
             forced_entry: None,
         }
+    }
+
+    /// A restored planner: the machine's law and window size (the window releases segments
+    /// when it holds that many: a larger one would read the whole program at once), speeds and
+    /// scale in range, its segments checked.
+    pub fn check_state(&self, machine: &crate::config::Machine) -> Result<(), String> {
+        use crate::valid::{within, MAX_SPEED_M_S};
+        let fresh = Planner::new(machine.profile, machine.lookahead_blocks);
+        if (self.kind, self.capacity) != (fresh.kind, fresh.capacity) {
+            return Err("planner: saved for another law or look-ahead".into());
+        }
+        if self.window.len() > self.capacity + 1 {
+            return Err(format!(
+                "planner: {} segments in a window of {}",
+                self.window.len(),
+                self.capacity
+            ));
+        }
+        within("feed scale", self.feed_scale, 1e-3, 2.0)?;
+        within("planner speed", self.v_prev, 0.0, MAX_SPEED_M_S)?;
+        within("junction speed", self.junction_prev, 0.0, f64::INFINITY)?;
+        within(
+            "forced entry",
+            self.forced_entry.unwrap_or(0.0),
+            0.0,
+            MAX_SPEED_M_S,
+        )?;
+        for e in &self.window {
+            e.block.check_state()?;
+            within("entry cap", e.v_in_cap, 0.0, MAX_SPEED_M_S)?;
+            within("stop entry", e.v_in_stop, 0.0, MAX_SPEED_M_S)?;
+            within("window feed", e.v_feed, 0.0, MAX_SPEED_M_S)?;
+            if !e.v_in_lim.is_nan() {
+                within("entry limit", e.v_in_lim, 0.0, MAX_SPEED_M_S)?;
+            }
+        }
+        Ok(())
     }
 
     /// Start again from a point of the path reached at speed `v_start` (acceleration zero): the

@@ -4,6 +4,8 @@
 //! and the external force), so the discretisation is stable and exact for any stiffness, mass or
 //! step; the nonlinear parts (torque saturation, Coulomb friction) are held per sub-step.
 
+mod rest;
+
 use super::{AxisState, ServoParams};
 use crate::tolerance::{PERIOD_SLACK, SAME_STEP};
 use nalgebra::{SMatrix, SVector, Vector2};
@@ -135,6 +137,49 @@ impl Step {
     }
 }
 
+/// The constants of the control law, from the parameters (once per step, not per period).
+struct Law {
+    /// Lead per radian (m/rad).
+    r: f64,
+    /// Encoder count (rad), None for an ideal encoder.
+    count: Option<f64>,
+    /// Velocity-loop integral gain (N·m/rad).
+    ki: f64,
+    /// Inertia at the motor of motor, screw and table (kg·m²).
+    inertia: f64,
+}
+
+impl Law {
+    fn of(p: &ServoParams) -> Law {
+        let r = p.screw_lead / (2.0 * std::f64::consts::PI);
+        Law {
+            r,
+            count: (p.encoder_counts > 0.0).then(|| 2.0 * std::f64::consts::PI / p.encoder_counts),
+            ki: p.velocity_gain / p.velocity_integral_time,
+            inertia: p.rotor_inertia + p.screw_inertia + p.table_mass * r * r,
+        }
+    }
+}
+
+/// x rounded half away from zero, as `f64::round`, without its libm call (x86-64 has no
+/// rounding instruction before SSE4.1): the encoder count, 24 times per interpolation period.
+fn round(x: f64) -> f64 {
+    if x.abs() >= 4_503_599_627_370_496.0 || x.is_nan() {
+        return x; // 2^52 and beyond: already whole.
+    }
+    let t = x as i64 as f64;
+    // x − t is exact here (|x| < 2^52, t = x truncated).
+    let d = x - t;
+    let r = if d >= 0.5 {
+        t + 1.0
+    } else if d <= -0.5 {
+        t - 1.0
+    } else {
+        t
+    };
+    r.copysign(x)
+}
+
 /// The command the interpolator gives an axis (held between ticks).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct AxisCommand {
@@ -159,9 +204,38 @@ pub struct ServoAxis {
     /// Command position in force (m): the following error is read against it at any instant.
     command_position: f64,
     #[serde(skip)]
+    steps: Steps,
+}
+
+/// Partial sub-step lengths kept (see [`Steps`]).
+const PARTIAL_STEPS: usize = 4;
+
+/// Φ and Γ of the full period and of the last few partial sub-step lengths (round robin): a
+/// servo rate that does not divide the interpolation period repeats a short cycle of them.
+#[derive(Clone, Debug, Default)]
+struct Steps {
     full: Option<Step>,
-    #[serde(skip)]
-    partial: Option<Step>,
+    partial: [Option<Step>; PARTIAL_STEPS],
+    next: usize,
+}
+
+impl Steps {
+    /// The step of length h: the full period's (h within SAME_STEP of it), or a partial one.
+    fn of(&mut self, p: &ServoParams, h: f64, period: f64) -> &Step {
+        if (h - period).abs() <= SAME_STEP * period {
+            return self.full.get_or_insert_with(|| Step::new(p, period));
+        }
+        let k = match self.partial.iter().position(|s| s.is_some_and(|s| s.h == h)) {
+            Some(k) => k,
+            None => {
+                let k = self.next;
+                self.partial[k] = Some(Step::new(p, h));
+                self.next = (k + 1) % PARTIAL_STEPS;
+                k
+            }
+        };
+        self.partial[k].as_ref().expect("stored above")
+    }
 }
 
 impl ServoAxis {
@@ -180,9 +254,33 @@ impl ServoAxis {
             friction: 0.0,
             phase: 0.0,
             command_position: position,
-            full: None,
-            partial: None,
+            steps: Steps::default(),
         }
+    }
+
+    /// A restored drive: this axis' parameters, its phase inside a period, its torques within
+    /// the peak and the Coulomb force, its positions and speeds in range.
+    pub fn check_state(&self, params: &ServoParams) -> Result<(), String> {
+        use crate::valid::{within, MAX_POSITION_M, MAX_SPEED_M_S};
+        if self.params != *params {
+            return Err("drive: saved with other servo parameters".into());
+        }
+        let p = &self.params;
+        within("servo phase", self.phase, 0.0, 1.0 / p.servo_rate)?;
+        within("torque command", self.torque_ref, -p.peak_torque, p.peak_torque)?;
+        let peak = p.peak_torque * (1.0 + 1e-9);
+        within("motor torque", self.x.tau, -peak, peak)?;
+        within("friction", self.friction, -p.coulomb_friction, p.coulomb_friction)?;
+        let r = self.lead_radius();
+        for (name, x) in [
+            ("table", self.x.x),
+            ("motor", r * self.x.theta),
+            ("command", self.command_position),
+        ] {
+            within(&format!("{name} position"), x, -MAX_POSITION_M, MAX_POSITION_M)?;
+        }
+        within("table speed", self.x.v, -MAX_SPEED_M_S, MAX_SPEED_M_S)?;
+        within("motor speed", r * self.x.omega, -MAX_SPEED_M_S, MAX_SPEED_M_S)
     }
 
     fn lead_radius(&self) -> f64 {
@@ -210,29 +308,29 @@ impl ServoAxis {
 
     /// Position the control loop sees: motor encoder (quantised) × lead, or the linear scale.
     fn feedback(&self) -> f64 {
+        self.feedback_with(&Law::of(&self.params))
+    }
+
+    fn feedback_with(&self, law: &Law) -> f64 {
         if self.params.linear_scale != 0.0 {
             return self.x.x;
         }
-        let theta = if self.params.encoder_counts > 0.0 {
-            let q = 2.0 * std::f64::consts::PI / self.params.encoder_counts;
-            (self.x.theta / q).round() * q
-        } else {
-            self.x.theta
+        let theta = match law.count {
+            Some(q) => round(self.x.theta / q) * q,
+            None => self.x.theta,
         };
-        self.lead_radius() * theta
+        law.r * theta
     }
 
     /// Control law at the start of a servo period.
-    fn control(&mut self, cmd: &AxisCommand, period: f64) {
+    fn control(&mut self, cmd: &AxisCommand, period: f64, law: &Law) {
         let p = &self.params;
-        let r = self.lead_radius();
-        let e = cmd.position - self.feedback();
+        let r = law.r;
+        let e = cmd.position - self.feedback_with(law);
         let omega_ref = (p.kv * e + p.velocity_feedforward * cmd.velocity) / r;
         let e_omega = omega_ref - self.x.omega;
-        let j_total = p.rotor_inertia + p.screw_inertia + p.table_mass * r * r;
-        let ff = p.acceleration_feedforward * j_total * cmd.acceleration / r;
-        let ki = p.velocity_gain / p.velocity_integral_time;
-        let integral = self.integral + ki * e_omega * period;
+        let ff = p.acceleration_feedforward * law.inertia * cmd.acceleration / r;
+        let integral = self.integral + law.ki * e_omega * period;
         let unclamped = p.velocity_gain * e_omega + integral + ff;
         let torque = unclamped.clamp(-p.peak_torque, p.peak_torque);
         // Anti-windup: keep the integrator only while the torque is not saturated.
@@ -248,9 +346,16 @@ impl ServoAxis {
         let period = 1.0 / self.params.servo_rate;
         self.command_position = cmd.position;
         let mut left = dt;
-        while left > 0.0 {
+        // Each pass completes a period or ends the step (bounded by construction, whatever the
+        // phase a restored state brings).
+        let passes = (dt / period).min(1e12) as u64 + 2;
+        let law = Law::of(&self.params);
+        for _ in 0..passes {
+            if left.is_nan() || left <= 0.0 {
+                break;
+            }
             if self.phase == 0.0 {
-                self.control(cmd, period);
+                self.control(cmd, period, &law);
             }
             let room = period - self.phase;
             // Sub-steps that end within 1e-9 of a period boundary complete it (rounding of dt).
@@ -260,24 +365,49 @@ impl ServoAxis {
                 (left, false)
             };
             let u = [self.torque_ref, load_force - self.friction];
-            let step = if (h - period).abs() <= SAME_STEP * period {
-                *self.full.get_or_insert_with(|| Step::new(&self.params, period))
-            } else {
-                match self.partial {
-                    Some(s) if s.h == h => s,
-                    _ => {
-                        let s = Step::new(&self.params, h);
-                        self.partial = Some(s);
-                        s
-                    }
-                }
-            };
-            self.x = step.apply(&self.x, u);
+            self.x = self.steps.of(&self.params, h, period).apply(&self.x, u);
             left -= h;
             self.phase = if completes { 0.0 } else { self.phase + h };
             if completes && left < PERIOD_SLACK * period {
                 break;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn round_is_f64_round() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut values = vec![
+            0.5,
+            -0.5,
+            1.5,
+            -2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            0.0,
+            -0.0,
+        ];
+        values.extend([
+            4503599627370495.5,
+            4503599627370497.0,
+            -4503599627370495.5,
+            1e300,
+            f64::INFINITY,
+        ]);
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            // Magnitudes from 1e-3 to 1e17, whole and half numbers among them.
+            let m = 10f64.powi((x % 21) as i32 - 3) * ((x >> 11) as f64 / (1u64 << 53) as f64);
+            values.extend([m, -m, m.trunc() + 0.5, -(m.trunc() + 0.5)]);
+        }
+        for v in values {
+            assert_eq!(super::round(v).to_bits(), v.round().to_bits(), "{v:e}");
+        }
+        assert!(super::round(f64::NAN).is_nan());
     }
 }

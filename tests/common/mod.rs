@@ -63,6 +63,9 @@ pub struct Fmu {
     pub callbacks: Box<Callbacks>,
     pub log: Box<Log>,
     pub vrs: std::collections::HashMap<String, c_uint>,
+    /// The outputs in modelDescription order: name, value reference, type (Real, Integer,
+    /// Boolean).
+    pub outputs: Vec<(String, c_uint, String)>,
 }
 
 #[macro_export]
@@ -91,6 +94,29 @@ pub type FnGetBool = unsafe extern "C" fn(Component, *const c_uint, usize, *mut 
 pub type FnSetString = unsafe extern "C" fn(Component, *const c_uint, usize, *const *const c_char) -> c_int;
 pub type FnDoStep = unsafe extern "C" fn(Component, f64, f64, c_int) -> c_int;
 pub type FnFree = unsafe extern "C" fn(Component);
+pub type FnGetInt = unsafe extern "C" fn(Component, *const c_uint, usize, *mut c_int) -> c_int;
+pub type FnSetBool = unsafe extern "C" fn(Component, *const c_uint, usize, *const c_int) -> c_int;
+pub type FmuState = *mut c_void;
+pub type FnState = unsafe extern "C" fn(Component, *mut FmuState) -> c_int;
+pub type FnSetState = unsafe extern "C" fn(Component, FmuState) -> c_int;
+pub type FnStateSize = unsafe extern "C" fn(Component, FmuState, *mut usize) -> c_int;
+pub type FnSerialize = unsafe extern "C" fn(Component, FmuState, *mut u8, usize) -> c_int;
+pub type FnDeserialize = unsafe extern "C" fn(Component, *const u8, usize, *mut FmuState) -> c_int;
+
+/// xorshift64*: small and deterministic, to pick mutations from a pinned seed.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
 
 impl Fmu {
     pub fn load() -> Fmu {
@@ -115,17 +141,18 @@ impl Fmu {
         });
         // Value references from the modelDescription, as an importer reads them.
         let mut vrs = std::collections::HashMap::new();
+        let mut outputs = Vec::new();
         for part in xml.split("<ScalarVariable name=\"").skip(1) {
             let name = part.split('"').next().unwrap().to_string();
-            let vr = part
-                .split("valueReference=\"")
-                .nth(1)
-                .unwrap()
-                .split('"')
-                .next()
-                .unwrap()
-                .parse()
-                .unwrap();
+            let attr = |key: &str| part.split(key).nth(1).unwrap().split('"').next().unwrap();
+            let vr: c_uint = attr("valueReference=\"").parse().unwrap();
+            if attr("causality=\"") == "output" {
+                let kind = attr("\">\n      <")
+                    .split(|c: char| !c.is_alphabetic())
+                    .next()
+                    .unwrap();
+                outputs.push((name.clone(), vr, kind.to_string()));
+            }
             vrs.insert(name, vr);
         }
         Fmu {
@@ -134,7 +161,91 @@ impl Fmu {
             callbacks,
             log,
             vrs,
+            outputs,
         }
+    }
+
+    pub fn step(&self, c: Component, t: f64, h: f64) -> c_int {
+        let f = sym!(self, "fmi2DoStep", FnDoStep);
+        unsafe { f(c, t, h, 1) }
+    }
+
+    pub fn set_real(&self, c: Component, name: &str, value: f64) -> c_int {
+        let f = sym!(self, "fmi2SetReal", FnSetReal);
+        let vr = self.vr(name);
+        unsafe { f(c, &vr, 1, &value) }
+    }
+
+    pub fn set_bool(&self, c: Component, name: &str, value: bool) -> c_int {
+        let f = sym!(self, "fmi2SetBoolean", FnSetBool);
+        let vr = self.vr(name);
+        unsafe { f(c, &vr, 1, &c_int::from(value)) }
+    }
+
+    /// Every output, as an importer reads them after a step: one fmi2GetReal for the Reals, one
+    /// fmi2GetInteger and one fmi2GetBoolean (as numbers, in modelDescription order).
+    pub fn outputs(&self, c: Component) -> Vec<f64> {
+        let get_real = sym!(self, "fmi2GetReal", FnGetReal);
+        let get_int = sym!(self, "fmi2GetInteger", FnGetInt);
+        let get_bool = sym!(self, "fmi2GetBoolean", FnGetBool);
+        let of = |kind: &str| -> Vec<c_uint> {
+            self.outputs.iter().filter(|o| o.2 == kind).map(|o| o.1).collect()
+        };
+        let (reals, ints, bools) = (of("Real"), of("Integer"), of("Boolean"));
+        let mut r = vec![0.0; reals.len()];
+        let mut i = vec![0; ints.len()];
+        let mut b = vec![0; bools.len()];
+        unsafe {
+            assert_eq!(get_real(c, reals.as_ptr(), reals.len(), r.as_mut_ptr()), OK);
+            assert_eq!(get_int(c, ints.as_ptr(), ints.len(), i.as_mut_ptr()), OK);
+            assert_eq!(get_bool(c, bools.as_ptr(), bools.len(), b.as_mut_ptr()), OK);
+        }
+        let (mut r, mut i, mut b) = (r.into_iter(), i.into_iter(), b.into_iter());
+        let mut next = |kind: &str| match kind {
+            "Real" => r.next().unwrap(),
+            "Integer" => f64::from(i.next().unwrap()),
+            _ => f64::from(b.next().unwrap()),
+        };
+        self.outputs.iter().map(|o| next(&o.2)).collect()
+    }
+
+    /// The FMU state of the instance now, serialized (fmi2GetFMUstate, fmi2SerializedFMUstateSize,
+    /// fmi2SerializeFMUstate, fmi2FreeFMUstate).
+    pub fn serialize(&self, c: Component) -> Vec<u8> {
+        let get = sym!(self, "fmi2GetFMUstate", FnState);
+        let size_of = sym!(self, "fmi2SerializedFMUstateSize", FnStateSize);
+        let serialize = sym!(self, "fmi2SerializeFMUstate", FnSerialize);
+        let mut state: FmuState = std::ptr::null_mut();
+        let mut size = 0usize;
+        unsafe {
+            assert_eq!(get(c, &mut state), OK);
+            assert_eq!(size_of(c, state, &mut size), OK);
+            let mut bytes = vec![0u8; size];
+            assert_eq!(serialize(c, state, bytes.as_mut_ptr(), size), OK);
+            self.free_state(c, state);
+            bytes
+        }
+    }
+
+    /// fmi2DeSerializeFMUstate, then fmi2SetFMUstate: the status of the first that fails.
+    pub fn restore(&self, c: Component, bytes: &[u8]) -> c_int {
+        let deserialize = sym!(self, "fmi2DeSerializeFMUstate", FnDeserialize);
+        let set = sym!(self, "fmi2SetFMUstate", FnSetState);
+        let mut state: FmuState = std::ptr::null_mut();
+        unsafe {
+            let status = deserialize(c, bytes.as_ptr(), bytes.len(), &mut state);
+            if status != OK {
+                return status;
+            }
+            let status = set(c, state);
+            self.free_state(c, state);
+            status
+        }
+    }
+
+    pub fn free_state(&self, c: Component, mut state: FmuState) {
+        let free = sym!(self, "fmi2FreeFMUstate", FnState);
+        assert_eq!(unsafe { free(c, &mut state) }, OK);
     }
 
     pub fn vr(&self, name: &str) -> c_uint {

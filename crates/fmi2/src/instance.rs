@@ -53,8 +53,9 @@ pub struct Snapshot<M> {
 }
 
 /// Serialized FMU state: magic "FMI2RS", format version (u16, big-endian), then GUID, time,
-/// slave state and the model's own (bincode) bytes, each length-prefixed and checked on reading.
-const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x02";
+/// slave state and the model's own bytes, each length-prefixed and checked on reading.
+/// Version 3: the models' bytes are postcard (was bincode 1.3).
+const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x03";
 
 /// Why a value is outside what the variable declares (non-finite Real, min/max, enumeration
 /// items), if it is.
@@ -173,7 +174,19 @@ impl<M: Model> Instance<M> {
     }
 
     /// Index of the variable with this value reference and type family.
+    #[inline]
     pub fn lookup(&self, function: &str, vr: u32, family: Type) -> Result<usize, Status> {
+        // Value references are 1…n in table order: one comparison per read on the way out.
+        let vars = &M::info().variables;
+        let i = (vr as usize).wrapping_sub(1);
+        match vars.get(i) {
+            Some(v) if v.value_reference == vr && v.kind.family() == family => Ok(i),
+            _ => self.lookup_slow(function, vr, family),
+        }
+    }
+
+    #[cold]
+    fn lookup_slow(&self, function: &str, vr: u32, family: Type) -> Result<usize, Status> {
         let vars = &M::info().variables;
         // Value references are 1…n in table order; fall back to a search for other numberings.
         let i = (vr as usize)
@@ -194,6 +207,7 @@ impl<M: Model> Instance<M> {
     }
 
     /// Read a variable (the state is checked by the caller's entry in the abi table).
+    #[inline]
     pub fn get(&mut self, function: &str, vr: u32, family: Type) -> Result<Value, Status> {
         let i = self.lookup(function, vr, family)?;
         Ok(self.model.get(i))
@@ -276,6 +290,9 @@ impl<M: Model> Instance<M> {
             return Err("serialized FMU state belongs to another model (GUID mismatch)".into());
         }
         let time = f64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad time")?);
+        if !time.is_finite() {
+            return Err(format!("serialized FMU state has a time of {time}"));
+        }
         let state = match take(1)?[0] {
             0 => State::Instantiated,
             1 => State::InitializationMode,

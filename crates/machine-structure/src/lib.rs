@@ -199,15 +199,21 @@ impl fmi2::Model for MachineStructureFmu {
         ranges::check_outputs(&self.0)
     }
 
-    /// bincode of the whole model (fixed-size plain data; the layer adds magic, version, GUID
+    /// postcard of the whole model (fixed-size plain data; the layer adds magic, version, GUID
     /// and length).
     fn serialize(&self) -> Vec<u8> {
-        bincode::serialize(&self.0).unwrap_or_default()
+        postcard::to_stdvec(&self.0).unwrap_or_default()
     }
 
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String> {
-        let state: MachineStructure =
-            bincode::deserialize(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
+        let (state, rest): (MachineStructure, _) =
+            postcard::take_from_bytes(bytes).map_err(|e| format!("MachineStructure state: {e}"))?;
+        if !rest.is_empty() {
+            return Err(format!(
+                "MachineStructure state: {} bytes after its end",
+                rest.len()
+            ));
+        }
         ranges::check_structure(&state)
             .and_then(|()| ranges::check_outputs(&state))
             .map_err(|e| format!("MachineStructure state: {e}"))?;

@@ -54,7 +54,7 @@ fn corrupted_states_are_refused_or_stay_finite() {
     for _ in 0..20 {
         f.do_step(1e-3).unwrap();
     }
-    // The state is binary (bincode): overwrite 8 bytes at a random offset with an extreme f64,
+    // The state is binary (postcard): overwrite 8 bytes at a random offset with an extreme f64,
     // which lands on a number of the state or across two of them.
     let good = f.serialize();
     let numbers = [1e308, -1e308, 5e-324, 0.0, -1.0, 1e30, f64::NAN, f64::INFINITY];

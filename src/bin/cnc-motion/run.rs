@@ -196,7 +196,9 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     let mut emitted = Differences::new(engine.tick().p, machine.interpolation_period);
     while !engine.finished() && engine.time() < args.max_time {
         let tick = *engine.step().map_err(|e| e.to_string())?;
-        cnc_motion::config::ranges::check_outputs(&engine).map_err(|m| format!("{}: {m}", args.program))?;
+        engine
+            .check_outputs()
+            .map_err(|m| format!("{}: {m}", args.program))?;
         max.take(&tick, emitted.push(tick.p), &engine);
         if let Some((path, w)) = csv.as_mut() {
             let row = CsvRow::new(&tick, &engine.axes());

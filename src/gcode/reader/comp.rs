@@ -37,6 +37,34 @@ pub struct Comp {
     finished: bool,
 }
 
+impl Comp {
+    /// A restored state: sides ±1 or 0, radii in range, the held blocks ones the look-ahead
+    /// holds (the held element moves in the plane), at most MAX_DEFERRED blocks between.
+    pub(super) fn check_state(&self) -> Result<(), String> {
+        use crate::valid::{at_most, point, within, MAX_POSITION_M};
+        for side in [self.side, self.held_side] {
+            if ![-1.0, 0.0, 1.0].contains(&side) {
+                return Err(format!("cutter compensation side {side}"));
+            }
+        }
+        within("compensation radius", self.radius, 0.0, MAX_POSITION_M)?;
+        within("compensation radius", self.held_radius, 0.0, MAX_POSITION_M)?;
+        point("compensation tool point", self.tool, MAX_POSITION_M)?;
+        at_most("deferred blocks", self.deferred.len() as u64, MAX_DEFERRED as u64)?;
+        let (a, b, _) = plane_axes(self.plane);
+        if self.held.is_some_and(|h| Elem::of(&h, a, b).is_none()) {
+            return Err("the held compensation element does not move in its plane".into());
+        }
+        let mut blocks = self
+            .entry
+            .iter()
+            .chain(&self.held)
+            .chain(&self.deferred)
+            .chain(&self.out);
+        blocks.try_for_each(Block::check_state)
+    }
+}
+
 impl Reader {
     /// G40 / G41 / G42 (D: tool number, radius from the table) / G41.1 / G42.1 (D: the tool
     /// diameter, LinuxCNC "G41.1, G42.1": "the ability to program the tool diameter").

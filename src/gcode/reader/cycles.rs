@@ -35,6 +35,22 @@ pub struct Cycle {
     g99: bool,
 }
 
+impl Cycle {
+    /// A restored state: levels in range, the dwell a G4's, the peck depth positive (the peck
+    /// loop of a hole runs (R − Z)/Q times).
+    pub(super) fn check_state(&self) -> Result<(), String> {
+        use crate::valid::{within, MAX_POSITION_M};
+        for z in [self.r, self.z, Some(self.z0)].into_iter().flatten() {
+            within("cycle level", z, -MAX_POSITION_M, MAX_POSITION_M)?;
+        }
+        within("cycle dwell", self.p, 0.0, crate::gcode::check::MAX_DWELL_S)?;
+        match self.q {
+            Some(q) => within("peck depth", q, f64::MIN_POSITIVE, MAX_POSITION_M),
+            None => Ok(()),
+        }
+    }
+}
+
 /// The levels of one cycle line (machine Z, m) and the peck depth (m, infinite for G81/G82).
 struct Levels {
     r: f64,

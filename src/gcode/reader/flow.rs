@@ -46,7 +46,6 @@ struct Open {
     /// Passes of a `repeat` still to run.
     left: u64,
     /// An `if` whose `else` branch is running.
-    #[serde(default)]
     in_else: bool,
 }
 
@@ -71,6 +70,39 @@ pub struct Flow {
 }
 
 impl Flow {
+    /// A restored state: every saved place a line start of the program (`place_ok`), the
+    /// bounds on subroutines, open constructs, call depth and loop passes.
+    pub(super) fn check_state(
+        &self,
+        place_ok: &dyn Fn(Place) -> bool,
+        max_iterations: u64,
+    ) -> Result<(), String> {
+        use crate::valid::at_most;
+        at_most("subroutines", self.subs.len() as u64, MAX_SUBS as u64)?;
+        at_most("open O-word constructs", self.open.len() as u64, MAX_OPEN as u64)?;
+        at_most("call depth", self.calls.len() as u64, MAX_CALL_DEPTH as u64)?;
+        at_most("loop passes", self.iterations, max_iterations)?;
+        let places = self.subs.values().chain(self.open.iter().map(|o| &o.at));
+        if !places
+            .chain(self.calls.iter().map(|f| &f.back))
+            .all(|&p| place_ok(p))
+        {
+            return Err("an O-word place is not a line start of the program".into());
+        }
+        for o in &self.open {
+            at_most("repeat passes left", o.left, max_iterations)?;
+        }
+        let mut below = 0;
+        for f in &self.calls {
+            if f.open < below || f.open > self.open.len() {
+                return Err("a call level's open constructs are out of order".into());
+            }
+            below = f.open;
+            f.locals.check_state()?;
+        }
+        Ok(())
+    }
+
     /// The constructs open in the current call level.
     fn level(&self) -> &[Open] {
         &self.open[self.calls.last().map_or(0, |f| f.open)..]

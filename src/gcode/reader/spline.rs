@@ -50,6 +50,30 @@ pub struct Splines {
     nurbs: Option<OpenNurbs>,
 }
 
+impl Splines {
+    /// A restored state: an open NURBS block within the bounds its words are read with.
+    pub(super) fn check_state(&self) -> Result<(), String> {
+        use crate::valid::{at_most, point, within, MAX_POSITION_M};
+        if let Some(end) = self.g5_end {
+            point("G5 end vector", [end[0], end[1], 0.0], MAX_POSITION_M)?;
+        }
+        let Some(n) = &self.nurbs else {
+            return Ok(());
+        };
+        at_most(
+            "NURBS control points",
+            n.points.len() as u64,
+            MAX_NURBS_POINTS as u64,
+        )?;
+        within("NURBS order", f64::from(n.order), 2.0, f64::from(MAX_NURBS_ORDER))?;
+        for p in &n.points {
+            point("NURBS control point", [p[0], p[1], 0.0], MAX_POSITION_M)?;
+            within("NURBS weight", p[2], MIN_WEIGHT, MAX_WEIGHT)?;
+        }
+        Ok(())
+    }
+}
+
 impl Curve for Nurbs {
     fn point(&self, u: f64) -> [f64; 2] {
         Nurbs::point(self, u)

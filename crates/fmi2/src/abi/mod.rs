@@ -7,7 +7,8 @@
 //! [`Call::spec`] (one table for all functions), catches panics, and moves the instance to the
 //! terminal [`State::Error`] whenever a function answers fmi2Error. In that state only get*,
 //! status inquiries, reset, free and the FMU-state functions are allowed (FMI 2.0 §2.1.3); a
-//! saved FMU state or fmi2Reset brings the instance back.
+//! saved FMU state or fmi2Reset brings the instance back. A panic is fmi2Fatal, logged with its
+//! message, and for good: the instance then answers fmi2Error to everything but fmi2FreeInstance.
 
 pub mod lifecycle;
 pub mod state;
@@ -177,6 +178,9 @@ impl Call {
 
 /// Run `f` on the instance behind `c` if `call` is allowed in its state (BEGIN_FUNCTION); an
 /// fmi2Error answer moves the instance to [`State::Error`], a panic to `Fatal` (END_FUNCTION).
+/// Fatal is for good (FMI 2.0 §2.1.3: only fmi2FreeInstance may follow): every later call
+/// answers fmi2Error with a log line and never reaches the model, whose state a panic may have
+/// left half-updated.
 ///
 /// # Safety
 /// `c` is NULL or an instance of model `M` from `instantiate`.
@@ -185,11 +189,16 @@ pub unsafe fn with<M: Model>(c: Component, call: Call, f: impl FnOnce(&mut Insta
         return Status::Error as c_int;
     }
     let inst = &mut *(c as *mut Instance<M>);
+    let (name, allowed) = call.spec();
+    if inst.state == State::Fatal {
+        let _ = catch_unwind(AssertUnwindSafe(|| {
+            inst.error(&format!(
+                "{name}: the instance failed fatally; only fmi2FreeInstance is allowed"
+            ))
+        }));
+        return Status::Error as c_int;
+    }
     let result = catch_unwind(AssertUnwindSafe(|| {
-        if inst.state == State::Fatal {
-            return Status::Error;
-        }
-        let (name, allowed) = call.spec();
         if allowed & (1 << inst.state as u16) == 0 {
             return inst.error(&format!("{name}: not allowed in state {:?}", inst.state));
         }
@@ -201,13 +210,29 @@ pub unsafe fn with<M: Model>(c: Component, call: Call, f: impl FnOnce(&mut Insta
             Status::Error as c_int
         }
         Ok(s) => s as c_int,
-        Err(_) => {
+        Err(payload) => {
             inst.state = State::Fatal;
+            let message = panic_message(payload.as_ref());
             let _ = catch_unwind(AssertUnwindSafe(|| {
-                inst.log(Status::Fatal, 2, "internal error (panic); instance is unusable")
+                inst.log(
+                    Status::Fatal,
+                    2,
+                    &format!("{name}: internal error (panic: {message}); the instance is unusable, only fmi2FreeInstance is allowed"),
+                )
             }));
             Status::Fatal as c_int
         }
+    }
+}
+
+/// The message of a panic (`panic!("…")` carries a `&str` or a `String`).
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> &str {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        s
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s
+    } else {
+        "no message"
     }
 }
 

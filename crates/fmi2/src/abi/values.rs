@@ -20,11 +20,22 @@ macro_rules! getter {
                 let (Some(vr), Some(out)) = (slice(vr, n), slice_mut(out, n)) else {
                     return inst.error(&format!("{name}: NULL array with nvr > 0"));
                 };
+                // One lookup and one model read per variable (outputs are computed once per
+                // step by the model: this loop is the whole cost of reading them). Value
+                // references are 1…n in table order; anything else takes `lookup`'s way.
+                let vars = &M::info().variables;
                 for (r, o) in vr.iter().zip(out.iter_mut()) {
-                    match inst.get(name, *r, $family) {
-                        Ok($pat) => *o = $val,
-                        Ok(_) => return inst.error(&format!("{name}: model returned another type")),
-                        Err(s) => return s,
+                    let i = (*r as usize).wrapping_sub(1);
+                    let i = match vars.get(i) {
+                        Some(v) if v.value_reference == *r && v.kind.family() == $family => i,
+                        _ => match inst.lookup(name, *r, $family) {
+                            Ok(i) => i,
+                            Err(s) => return s,
+                        },
+                    };
+                    match inst.model.get(i) {
+                        $pat => *o = $val,
+                        _ => return inst.error(&format!("{name}: model returned another type")),
                     }
                 }
                 Status::Ok
