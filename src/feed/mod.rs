@@ -13,6 +13,7 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod bands;
 pub mod compose;
 pub mod jerk15;
 pub mod mixed57;

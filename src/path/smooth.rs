@@ -19,16 +19,13 @@
 //!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
 
-use super::chain::{Chain, Curve, Piece};
+use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::transition;
 use super::source::{distance_to_segment, Source};
-use super::{
-    add, cross, curve_limits, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment,
-    Shares,
-};
+use super::{add, cross, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment};
 use crate::config::Machine;
-use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
+use crate::feed::bands::Bands;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -53,7 +50,7 @@ const KNOT_LENGTH: f64 = 2e-3;
 const RUN_MAX: usize = 1024;
 /// Pieces at most in one chain, and the speed ratio within which pieces share a chain.
 const CHAIN_MAX_PIECES: usize = 512;
-const CHAIN_SPEED_RATIO: f64 = 0.7;
+const CHAIN_SPEED_RATIO: f64 = 0.9;
 /// Shorter pieces are dropped (m).
 pub(super) const MIN_PIECE: f64 = 1e-12;
 
@@ -139,8 +136,10 @@ pub struct SmoothBuilder {
     chain_straight: bool,
     /// Largest |p'| over the chain: the feed in the chain parameter is the feed over it.
     chain_sigma: f64,
+    /// Largest speed class in the chain (`chain_class` is the smallest).
+    chain_class_max: f64,
     /// The limits of the chain's only piece, while it has one (computed when it was added).
-    chain_single: Option<Limits>,
+    chain_single: Option<CurveLimits>,
 }
 
 impl SmoothBuilder {
@@ -155,6 +154,7 @@ impl SmoothBuilder {
             chain_class: 0.0,
             chain_straight: true,
             chain_sigma: 1.0,
+            chain_class_max: 0.0,
             chain_single: None,
         }
     }
@@ -362,7 +362,7 @@ impl SmoothBuilder {
         piece: Piece,
         feed: f64,
         stop: bool,
-        known: Option<Limits>,
+        known: Option<CurveLimits>,
         m: &Machine,
         out: &mut Vec<PathBlock>,
     ) {
@@ -379,19 +379,22 @@ impl SmoothBuilder {
                 Some(known.unwrap_or_else(|| piece_limits(&cells, piece.length(), feed / sigma, m)))
             };
             let class = match own {
-                Some(l) => l.v_max,
+                Some(l) => l.class,
                 None => super::constant_speed_limit(&max_bounds(&cells), m).min(feed / sigma),
             };
+            // Every piece of a chain within the ratio of every other (not of the last one: a
+            // slow drift would otherwise hold a long chain at its slowest piece's speed).
             let fits = !self.chain.is_empty()
                 && feed == self.chain_feed
                 && straight == self.chain_straight
                 && self.chain.pieces.len() < CHAIN_MAX_PIECES
-                && class >= CHAIN_SPEED_RATIO * self.chain_class
+                && class >= CHAIN_SPEED_RATIO * self.chain_class_max
                 && self.chain_class >= CHAIN_SPEED_RATIO * class;
             if !fits {
                 self.close_chain(f64::INFINITY, m, out);
                 self.chain_feed = feed;
                 self.chain_class = class;
+                self.chain_class_max = class;
                 self.chain_straight = straight;
                 self.cells.clear();
                 self.chain_sigma = 1.0;
@@ -401,6 +404,7 @@ impl SmoothBuilder {
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
+            self.chain_class_max = self.chain_class_max.max(class);
             self.cells.extend(cells);
             self.chain.push(piece);
         }
@@ -415,21 +419,22 @@ impl SmoothBuilder {
         }
         let chain = std::mem::take(&mut self.chain);
         let first = chain.pieces[0];
-        let (segment, limits, sigma) = match (chain.pieces.len(), first.curve) {
+        let (segment, limits, bands, sigma) = match (chain.pieces.len(), first.curve) {
             (1, Curve::Line(_)) => {
                 let line = Line {
                     start: first.start(),
                     end: first.end(),
                 };
-                (Segment::Line(line), line_limits(line.direction(), m), 1.0)
+                let limits = line_limits(line.direction(), m);
+                (Segment::Line(line), limits, Bands::default(), 1.0)
             }
             _ => {
                 let v_cap = self.chain_feed / self.chain_sigma;
-                let limits = match self.chain_single.take() {
+                let own = match self.chain_single.take() {
                     Some(l) if chain.pieces.len() == 1 => l,
                     _ => piece_limits(&self.cells, chain.length(), v_cap, m),
                 };
-                (Segment::Chain(chain), limits, self.chain_sigma)
+                (Segment::Chain(chain), own.limits, own.bands, self.chain_sigma)
             }
         };
         out.push(PathBlock {
@@ -442,6 +447,7 @@ impl SmoothBuilder {
             v_end_max: v_end_max.min(limits.v_max),
             constant_speed: false,
             before_transition: false,
+            bands,
         });
     }
 }
@@ -508,44 +514,4 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
     }
     knots.push(run.len());
     knots
-}
-
-/// Tangential shares tried for a chain (see `chain_limits`).
-const TANGENTIAL_SHARES: [f64; 5] = [0.005, 0.02, 0.05, 0.1, 0.25];
-
-/// Time of the 7-phase law from rest to rest over `length` within `limits`.
-fn rest_to_rest(length: f64, limits: &Limits) -> f64 {
-    let req = BlockRequest {
-        length,
-        v_in: 0.0,
-        v_out: 0.0,
-        v_feed: limits.v_max,
-        limits: *limits,
-    };
-    scurve7::plan(&req).duration()
-}
-
-/// Limits of a chain of `length` with derivative bound cells `cells`: of the tangential shares tried, the
-/// one whose limits give the shortest rest-to-rest time over the chain — a long curve is
-/// fastest at the highest speed its curvature allows, a short one needs room to speed up.
-fn chain_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, length: f64, m: &Machine) -> Limits {
-    let time = |l: &Limits| rest_to_rest(length, l);
-    TANGENTIAL_SHARES
-        .iter()
-        .map(|&tangential| {
-            let shares = Shares {
-                a_cap: 1.0,
-                tangential,
-            };
-            curve_limits(cells, rho, v_cap, m, shares)
-        })
-        .min_by(|x, y| time(x).total_cmp(&time(y)))
-        .expect("shares are tried")
-}
-
-/// The limits of a piece (or chain) with bound cells `cells`, of `length`, capped at `v_cap`.
-pub(super) fn piece_limits(cells: &[[Vec3; 3]], length: f64, v_cap: f64, m: &Machine) -> Limits {
-    let k = norm(max_bounds(cells)[1]);
-    let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-    chain_limits(cells, rho, v_cap, length, m)
 }
