@@ -20,6 +20,7 @@ pub mod mixed57;
 pub mod quintic;
 pub mod roots;
 pub mod scurve7;
+pub mod scurve7_banded;
 pub mod tolerance;
 pub mod trapezoid;
 
@@ -147,6 +148,8 @@ pub enum Profile {
     Jerk15(jerk15::Jerk15),
     Mixed57(mixed57::Mixed57),
     Trapezoid(trapezoid::Trapezoid),
+    /// scurve7 across speed bands (a block with `Bands`).
+    Scurve7Banded(scurve7_banded::Scurve7Banded),
 }
 
 macro_rules! dispatch {
@@ -157,6 +160,7 @@ macro_rules! dispatch {
             Profile::Jerk15($p) => $e,
             Profile::Mixed57($p) => $e,
             Profile::Trapezoid($p) => $e,
+            Profile::Scurve7Banded($p) => $e,
         }
     };
 }

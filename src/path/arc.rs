@@ -4,6 +4,7 @@
 use super::budget::Budget;
 use super::{add, cross, scale, Geo};
 use crate::config::Machine;
+use crate::feed::bands::{Band, Bands};
 use crate::feed::Limits;
 use crate::gcode::Plane;
 use crate::Vec3;
@@ -274,43 +275,165 @@ pub struct Shares {
 /// for arcs above, the speed never above `v_cap`. The largest v_max whose budget keeps the
 /// tangential shares is solved in closed form (`Budget::max_speed`: each constraint is monotone).
 pub fn curve_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine, shares: Shares) -> Limits {
-    let b = &max_bounds(cells);
-    let v0 = constant_speed_limit(b, machine)
-        .min(chord_error_speed(
-            rho,
-            machine.chord_tolerance,
-            machine.interpolation_period,
-        ))
-        .min(v_cap);
-    let a_share = shares.a_cap;
-    let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
-    for (i, ax) in machine.axes.iter().enumerate() {
-        if b[0][i] > 1e-12 {
-            a_free = a_free.min(ax.max_acceleration / b[0][i]);
-            j_free = j_free.min(ax.max_jerk / b[0][i]);
-        }
-    }
-    if let Some(a) = machine.max_path_acceleration {
-        a_free = a_free.min(a);
-    }
-    if let Some(j) = machine.max_path_jerk {
-        j_free = j_free.min(j);
-    }
-    let budget = Budget {
-        cells,
-        machine,
-        a_cap: a_share * a_free,
-        j_free,
-        a_min: shares.tangential * a_free,
-        j_min: shares.tangential * j_free,
-    };
-    let (v, (a_c, j_c)) = budget.max_speed(v0);
+    let frame = Frame::of(cells, rho, v_cap, machine);
+    let (v, (a_c, j_c)) = frame.budget(cells, machine, shares).max_speed(frame.v0);
     Limits {
         v_max: v,
         a_max: a_c,
         j_max: j_c,
         snap_max: machine.max_snap,
     }
+}
+
+/// What every budget of a curve starts from: the speed bound without tangential motion (axis
+/// limits, chord error, cap) and the free tangential acceleration and jerk A_i/|d1_i|, J_i/|d1_i|.
+struct Frame {
+    v0: f64,
+    a_free: f64,
+    j_free: f64,
+}
+
+impl Frame {
+    fn of(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> Frame {
+        let b = &max_bounds(cells);
+        let v0 = constant_speed_limit(b, machine)
+            .min(chord_error_speed(
+                rho,
+                machine.chord_tolerance,
+                machine.interpolation_period,
+            ))
+            .min(v_cap);
+        let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
+        for (i, ax) in machine.axes.iter().enumerate() {
+            if b[0][i] > 1e-12 {
+                a_free = a_free.min(ax.max_acceleration / b[0][i]);
+                j_free = j_free.min(ax.max_jerk / b[0][i]);
+            }
+        }
+        if let Some(a) = machine.max_path_acceleration {
+            a_free = a_free.min(a);
+        }
+        if let Some(j) = machine.max_path_jerk {
+            j_free = j_free.min(j);
+        }
+        Frame { v0, a_free, j_free }
+    }
+
+    fn budget<'a>(&self, cells: &'a [[Vec3; 3]], machine: &'a Machine, shares: Shares) -> Budget<'a> {
+        Budget {
+            cells,
+            machine,
+            a_cap: shares.a_cap * self.a_free,
+            j_free: self.j_free,
+            a_min: shares.tangential * self.a_free,
+            j_min: shares.tangential * self.j_free,
+        }
+    }
+}
+
+/// Golden-section steps of a band's acceleration (on its logarithm, over `BAND_A_RANGE` of the most
+/// its top speed leaves).
+const BAND_A_STEPS: usize = 40;
+const BAND_A_RANGE: f64 = 1e-4;
+
+/// Limits and speed bands of a curve (feed/bands.rs). v_0 is the curve's speed limit with no
+/// tangential acceleration or jerk left (axis limits with the centripetal and chain-rule terms,
+/// chord error, cap); the band tops are the fractions `tops` of it, the last the curve's v_max.
+/// At a band's top speed v the axes leave A ≤ min_i (A_i − |d2_i|·v²)/|d1_i| and, with A,
+/// J = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·A)/|d1_i|: more acceleration leaves less jerk, and of
+/// the pairs (A, J) on that frontier the band takes the one whose ramp across it (Δv/A + A/J, or
+/// 2·sqrt(Δv/J)) is the quickest, at most the acceleration of the band below. Every pair holds at
+/// every speed up to its band's top (each term grows with v). All of it grows with every limit.
+pub fn curve_bands(
+    cells: &[[Vec3; 3]],
+    rho: f64,
+    v_cap: f64,
+    machine: &Machine,
+    tops: &[f64],
+) -> (Limits, Bands) {
+    // The curve's own limit, without the feed: the bands are the same whatever the feed.
+    let frame = Frame::of(cells, rho, f64::INFINITY, machine);
+    let budget = frame.budget(
+        cells,
+        machine,
+        Shares {
+            a_cap: 1.0,
+            tangential: 0.0,
+        },
+    );
+    let v_zero = budget.max_speed(frame.v0).0;
+    if v_zero <= 0.0 {
+        let shares = Shares {
+            a_cap: 1.0,
+            tangential: 0.0,
+        };
+        return (curve_limits(cells, rho, v_cap, machine, shares), Bands::default());
+    }
+    let v_top = tops.last().map_or(v_zero, |f| f * v_zero).min(v_cap);
+    let (mut floor, mut a_below) = (0.0, f64::INFINITY);
+    let mut levels: Vec<Band> = Vec::with_capacity(tops.len());
+    for v in tops.iter().map(|&f| (f * v_zero).min(v_top)) {
+        if v <= floor {
+            break;
+        }
+        let (a, j) = quickest_pair(&budget, v, v - floor, a_below);
+        (floor, a_below) = (v, a);
+        levels.push(Band {
+            v_top: v,
+            a_max: a,
+            j_max: j,
+        });
+    }
+    let top = levels.last().expect("a top speed");
+    let limits = Limits {
+        v_max: top.v_top,
+        a_max: top.a_max,
+        j_max: top.j_max,
+        snap_max: machine.max_snap,
+    };
+    (limits, Bands::below(&limits, &levels))
+}
+
+/// The pair (A, J) on the budget's frontier at speed v, A ≤ `a_most`, whose ramp over `dv` is
+/// quickest (golden section on log A; the ramp time is unimodal in A).
+fn quickest_pair(budget: &Budget, v: f64, dv: f64, a_most: f64) -> (f64, f64) {
+    let a_hi = budget.acceleration_at(v).min(a_most);
+    if a_hi.is_nan() || a_hi <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let time = |x: f64| {
+        let a = a_hi * x.exp();
+        let j = budget.jerk_with(v, a);
+        if j <= 0.0 || j.is_nan() {
+            f64::INFINITY
+        } else if dv * j <= a * a {
+            2.0 * (dv / j).sqrt()
+        } else {
+            dv / a + a / j
+        }
+    };
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut lo, mut hi) = (BAND_A_RANGE.ln(), 0.0);
+    let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+    let (mut t1, mut t2) = (time(x1), time(x2));
+    for _ in 0..BAND_A_STEPS {
+        if t1 <= t2 {
+            hi = x2;
+            (x2, t2) = (x1, t1);
+            x1 = hi - g * (hi - lo);
+            t1 = time(x1);
+        } else {
+            lo = x1;
+            (x1, t1) = (x2, t2);
+            x2 = lo + g * (hi - lo);
+            t2 = time(x2);
+        }
+    }
+    // The end of the range itself (the most acceleration) where the ramp is fastest there.
+    let (x, t) = if t1 <= t2 { (x1, t1) } else { (x2, t2) };
+    let x = if time(0.0) <= t { 0.0 } else { x };
+    let a = a_hi * x.exp();
+    (a, budget.jerk_with(v, a).max(0.0))
 }
 
 /// Largest per-axis bounds over the cells.

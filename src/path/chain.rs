@@ -3,10 +3,10 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::{arc::curve_limits, arc::Arc, arc::Shares, hermite::Hermite, line::Line, max_bounds, norm, Geo};
+use super::{arc::curve_bands, arc::Arc, hermite::Hermite, line::Line, max_bounds, norm, Geo};
 use crate::config::Machine;
-use crate::feed::bands::{Band, Banded, Bands};
-use crate::feed::{FeedLaw, Limits, ProfileKind};
+use crate::feed::bands::Bands;
+use crate::feed::Limits;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -152,13 +152,9 @@ impl Chain {
     }
 }
 
-/// Shares of the free tangential acceleration and jerk at which a curve's speed levels are taken
-/// (`piece_limits`), from low speed to high.
-const LEVEL_SHARES: [f64; 8] = [0.8, 0.6, 0.4, 0.25, 0.1, 0.05, 0.02, 0.005];
-/// The levels that may be a chain's top speed (indices into `LEVEL_SHARES`).
-const TOP_LEVELS: [usize; 5] = [3, 4, 5, 6, 7];
-/// The level by which pieces are grouped into chains (a share with room to change speed).
-const CLASS_LEVEL: usize = 5;
+/// Tops of a curve's speed bands as fractions of its speed limit without tangential motion
+/// (`curve_bands`), from low speed to high: the last is the curve's top speed.
+const BAND_TOPS: [f64; 7] = [0.35, 0.55, 0.7, 0.8, 0.88, 0.94, 0.985];
 
 /// What the planner needs of a piece or chain: its limits (at every speed up to v_max), the wider
 /// ones at lower speeds, and the speed class by which pieces are grouped into chains.
@@ -169,56 +165,15 @@ pub struct CurveLimits {
     pub class: f64,
 }
 
-/// Time of the 7-phase law from rest to rest over `length` within `limits` and `bands`.
-fn rest_to_rest(length: f64, limits: &Limits, bands: &Bands) -> f64 {
-    let banded = Banded {
-        kind: ProfileKind::Scurve7,
-        top: limits,
-        bands,
-    };
-    banded
-        .parts(length, 0.0, 0.0, limits.v_max)
-        .iter()
-        .map(|p| p.profile.duration())
-        .sum()
-}
-
-/// The limits of a piece (or chain) of `length` with derivative bound cells `cells`, capped at
-/// `v_cap`. The budget is taken at the speed levels where the tangential acceleration and jerk
-/// keep each share of `LEVEL_SHARES` (`curve_limits`); of the top levels tried, with the levels
-/// below as speed bands or without, the one with the shortest rest-to-rest time over the length —
-/// a long curve is fastest at the highest speed its curvature allows, a short one needs room to
-/// speed up, and the bands give the ramps the acceleration the lower speeds leave.
-pub(super) fn piece_limits(cells: &[[Vec3; 3]], length: f64, v_cap: f64, m: &Machine) -> CurveLimits {
+/// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped
+/// at `v_cap` (`curve_bands`); its class is its top speed.
+pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
     let k = norm(max_bounds(cells)[1]);
     let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-    let levels = LEVEL_SHARES.map(|tangential| {
-        let shares = Shares {
-            a_cap: 1.0,
-            tangential,
-        };
-        curve_limits(cells, rho, v_cap, m, shares)
-    });
-    let band = |l: &Limits| Band {
-        v_top: l.v_max,
-        a_max: l.a_max,
-        j_max: l.j_max,
-    };
-    let mut best: Option<(f64, Limits, Bands)> = None;
-    for &top in &TOP_LEVELS {
-        let limits = levels[top];
-        let below: Vec<Band> = levels[..top].iter().map(band).collect();
-        for bands in [Bands::below(&limits, &below), Bands::default()] {
-            let time = rest_to_rest(length, &limits, &bands);
-            if best.as_ref().is_none_or(|b| time < b.0) {
-                best = Some((time, limits, bands));
-            }
-        }
-    }
-    let (_, limits, bands) = best.expect("levels are tried");
+    let (limits, bands) = curve_bands(cells, rho, v_cap, m, &BAND_TOPS);
     CurveLimits {
         limits,
         bands,
-        class: levels[CLASS_LEVEL].v_max,
+        class: limits.v_max,
     }
 }

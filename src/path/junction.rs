@@ -27,7 +27,7 @@ const DEVIATION_SAMPLES: usize = 64;
 fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<CurveLimits> {
     let mut cells = Vec::new();
     h.cells(|c| cells.push(c));
-    let limits = piece_limits(&cells, h.length(), feed / h.speed_bound().max(1.0), m);
+    let limits = piece_limits(&cells, feed / h.speed_bound().max(1.0), m);
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,

@@ -376,7 +376,7 @@ impl SmoothBuilder {
             let own = if straight {
                 None
             } else {
-                Some(known.unwrap_or_else(|| piece_limits(&cells, piece.length(), feed / sigma, m)))
+                Some(known.unwrap_or_else(|| piece_limits(&cells, feed / sigma, m)))
             };
             let class = match own {
                 Some(l) => l.class,
@@ -432,7 +432,7 @@ impl SmoothBuilder {
                 let v_cap = self.chain_feed / self.chain_sigma;
                 let own = match self.chain_single.take() {
                     Some(l) if chain.pieces.len() == 1 => l,
-                    _ => piece_limits(&self.cells, chain.length(), v_cap, m),
+                    _ => piece_limits(&self.cells, v_cap, m),
                 };
                 (Segment::Chain(chain), own.limits, own.bands, self.chain_sigma)
             }

@@ -19,6 +19,7 @@ mod feed_control;
 pub use feed_control::{FeedControl, Here, Replan};
 
 use crate::feed::bands::Banded;
+use crate::feed::scurve7_banded;
 use crate::feed::{BlockRequest, FeedLaw, Profile, ProfileKind};
 use crate::path::{PathBlock, Segment};
 use serde::{Deserialize, Serialize};
@@ -269,6 +270,18 @@ impl Planner {
         } else {
             e.v_feed.max(v_in).max(v_out)
         };
+        if banded.joined() {
+            let profile = Profile::Scurve7Banded(scurve7_banded::plan(&banded, length, v_in, v_out, v_feed));
+            let v_out = profile.v_end();
+            self.v_prev = v_out;
+            out.push_back(Planned {
+                block: e.block,
+                v_in,
+                v_out,
+                profile,
+            });
+            return;
+        }
         if !e.block.bands.is_empty() {
             return self.emit_parts(e.block, v_in, v_out, v_feed, out);
         }
