@@ -28,6 +28,18 @@ pub struct Band {
     pub j_max: f64,
 }
 
+impl Band {
+    /// The band's limits, with the snap of `top`.
+    pub fn limits(&self, top: &Limits) -> Limits {
+        Limits {
+            v_max: self.v_top,
+            a_max: self.a_max,
+            j_max: self.j_max,
+            snap_max: top.snap_max,
+        }
+    }
+}
+
 /// Levels below a block's limits, by increasing speed (each with A and J above the next one's).
 /// Empty: the block's limits hold at every speed alike (lines).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -112,15 +124,10 @@ impl Banded<'_> {
 
     /// Limits of band k (the top band is the block's own).
     pub fn limits(&self, k: usize) -> Limits {
-        match self.bands.levels().get(k) {
-            Some(b) => Limits {
-                v_max: b.v_top,
-                a_max: b.a_max,
-                j_max: b.j_max,
-                snap_max: self.top.snap_max,
-            },
-            None => *self.top,
-        }
+        self.bands
+            .levels()
+            .get(k)
+            .map_or(*self.top, |b| b.limits(self.top))
     }
 
     /// Top speed of band k for the decomposition (∞ for the top band: speeds above the block's

@@ -331,6 +331,9 @@ impl Frame {
     }
 }
 
+/// A speed above any a curve allows (m/s): where the search for its budget's end starts.
+const CURVE_SPEED_CEILING: f64 = 1e4;
+
 /// Golden-section steps of a band's acceleration (on its logarithm, over `BAND_A_RANGE` of the most
 /// its top speed leaves).
 const BAND_A_STEPS: usize = 40;
@@ -351,23 +354,18 @@ pub fn curve_bands(
     machine: &Machine,
     tops: &[f64],
 ) -> (Limits, Bands) {
-    // The curve's own limit, without the feed: the bands are the same whatever the feed.
-    let frame = Frame::of(cells, rho, f64::INFINITY, machine);
-    let budget = frame.budget(
-        cells,
-        machine,
-        Shares {
-            a_cap: 1.0,
-            tangential: 0.0,
-        },
-    );
-    let v_zero = budget.max_speed(frame.v0).0;
-    if v_zero <= 0.0 {
-        let shares = Shares {
-            a_cap: 1.0,
-            tangential: 0.0,
-        };
-        return (curve_limits(cells, rho, v_cap, machine, shares), Bands::default());
+    let frame = Frame::of(cells, rho, v_cap, machine);
+    let zero = Shares {
+        a_cap: 1.0,
+        tangential: 0.0,
+    };
+    let budget = frame.budget(cells, machine, zero);
+    // Where the acceleration and jerk budgets run out (not the axis speeds, the chord error or
+    // the feed: the bands are where the budget changes, whatever caps the speed).
+    let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
+    let v_cap = budget.max_speed(frame.v0).0;
+    if v_zero <= 0.0 || v_cap <= 0.0 {
+        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
     }
     let v_top = tops.last().map_or(v_zero, |f| f * v_zero).min(v_cap);
     let (mut floor, mut a_below) = (0.0, f64::INFINITY);

@@ -26,6 +26,7 @@ use super::source::{distance_to_segment, Source};
 use super::{add, cross, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment};
 use crate::config::Machine;
 use crate::feed::bands::Bands;
+use crate::feed::Limits;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -48,9 +49,8 @@ const CHECK_PIECES: usize = 4;
 const KNOT_LENGTH: f64 = 2e-3;
 /// Moves held at most in one run before its spans are fitted.
 const RUN_MAX: usize = 1024;
-/// Pieces at most in one chain, and the speed ratio within which pieces share a chain.
+/// Pieces at most in one chain.
 const CHAIN_MAX_PIECES: usize = 512;
-const CHAIN_SPEED_RATIO: f64 = 0.9;
 /// Shorter pieces are dropped (m).
 pub(super) const MIN_PIECE: f64 = 1e-12;
 
@@ -133,11 +133,11 @@ pub struct SmoothBuilder {
     cells: Vec<[Vec3; 3]>,
     chain_feed: f64,
     chain_class: f64,
+    /// Time the chain's pieces lose to running at `chain_class` (`loss_if_joined`).
+    chain_loss: f64,
     chain_straight: bool,
     /// Largest |p'| over the chain: the feed in the chain parameter is the feed over it.
     chain_sigma: f64,
-    /// Largest speed class in the chain (`chain_class` is the smallest).
-    chain_class_max: f64,
     /// The limits of the chain's only piece, while it has one (computed when it was added).
     chain_single: Option<CurveLimits>,
 }
@@ -152,9 +152,9 @@ impl SmoothBuilder {
             cells: Vec::new(),
             chain_feed: 0.0,
             chain_class: 0.0,
+            chain_loss: 0.0,
             chain_straight: true,
             chain_sigma: 1.0,
-            chain_class_max: 0.0,
             chain_single: None,
         }
     }
@@ -371,40 +371,52 @@ impl SmoothBuilder {
             piece.curve.cells(|c| cells.push(c));
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
-            // The speed class is the piece's own v_max with its tangential budget, so a chain
-            // never runs slower than its slowest piece would alone (by more than the ratio).
+            // The speed class is the piece's own v_max, and its ramps' limits those at low speed.
             let own = if straight {
                 None
             } else {
                 Some(known.unwrap_or_else(|| piece_limits(&cells, feed / sigma, m)))
             };
-            let class = match own {
-                Some(l) => l.class,
-                None => super::constant_speed_limit(&max_bounds(&cells), m).min(feed / sigma),
+            let (class, ramps) = match own {
+                Some(l) => (
+                    l.class,
+                    l.bands.levels().first().map_or(l.limits, |b| b.limits(&l.limits)),
+                ),
+                None => {
+                    let Curve::Line(line) = piece.curve else {
+                        unreachable!("straight pieces are lines")
+                    };
+                    let class = super::constant_speed_limit(&max_bounds(&cells), m).min(feed / sigma);
+                    (class, line_limits(line.direction(), m))
+                }
             };
-            // Every piece of a chain within the ratio of every other (not of the last one: a
-            // slow drift would otherwise hold a long chain at its slowest piece's speed).
+            let loss = loss_if_joined(
+                self.chain_loss,
+                self.chain.length(),
+                self.chain_class,
+                piece.length(),
+                class,
+            );
             let fits = !self.chain.is_empty()
                 && feed == self.chain_feed
                 && straight == self.chain_straight
                 && self.chain.pieces.len() < CHAIN_MAX_PIECES
-                && class >= CHAIN_SPEED_RATIO * self.chain_class_max
-                && self.chain_class >= CHAIN_SPEED_RATIO * class;
-            if !fits {
+                && joining_pays(loss, self.chain_class, class, &ramps);
+            if fits {
+                self.chain_loss = loss;
+                self.chain_single = None;
+            } else {
                 self.close_chain(f64::INFINITY, m, out);
                 self.chain_feed = feed;
                 self.chain_class = class;
-                self.chain_class_max = class;
+                self.chain_loss = 0.0;
                 self.chain_straight = straight;
                 self.cells.clear();
                 self.chain_sigma = 1.0;
                 self.chain_single = own;
-            } else {
-                self.chain_single = None;
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
-            self.chain_class_max = self.chain_class_max.max(class);
             self.cells.extend(cells);
             self.chain.push(piece);
         }
@@ -465,6 +477,42 @@ pub(super) fn jet_at(piece: &Piece, u: f64) -> Jet {
         d1: g.d1,
         d2: g.d2,
     }
+}
+
+/// What the chain's pieces lose, in time, to running at the chain's speed class rather than each
+/// at its own: Σ L_i·(1/v_chain − 1/v_i), in seconds, if a piece of `length` and `class` joins a
+/// chain of `chain_length` at `chain_class` that already loses `chain_loss`.
+fn loss_if_joined(chain_loss: f64, chain_length: f64, chain_class: f64, length: f64, class: f64) -> f64 {
+    if class >= chain_class {
+        chain_loss + length * (1.0 / chain_class - 1.0 / class)
+    } else {
+        chain_loss + chain_length * (1.0 / class - 1.0 / chain_class)
+    }
+}
+
+/// Whether a piece should join the chain rather than start the next one, by the time each way
+/// costs. Joined, every piece runs at the slowest one's speed: the chain loses `loss` (above).
+/// Apart, their junction is a block end, where the acceleration is zero: a ramp from rest to
+/// the faster speed through it takes T(v_slow) + T(Δv) rather than T(v_fast), and the speed
+/// change between them a ramp that covers (v_slow + v_fast)/2·T(Δv), Δv·T(Δv)/(2·v_fast) longer
+/// than that distance at the faster speed (T the 7-phase ramp time within `ramps`). Decided on
+/// their times, the two ways cost about the same where the choice changes with a limit.
+fn joining_pays(loss: f64, chain_class: f64, class: f64, ramps: &Limits) -> bool {
+    let (v_slow, v_fast) = (chain_class.min(class), chain_class.max(class));
+    if v_fast <= 0.0 {
+        return true;
+    }
+    let (a, j) = (ramps.a_max, ramps.j_max);
+    let t = |dv: f64| {
+        if dv * j <= a * a {
+            2.0 * (dv / j).sqrt()
+        } else {
+            dv / a + a / j
+        }
+    };
+    let dv = v_fast - v_slow;
+    let apart = t(v_slow) + t(dv) - t(v_fast) + 0.5 * t(dv) * dv / v_fast;
+    loss <= apart
 }
 
 /// The vertex between two moves is smooth: two short line moves of one feed and similar
