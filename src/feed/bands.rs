@@ -18,7 +18,7 @@ use super::{scurve7_banded, BlockRequest, FeedLaw, Limits, Profile, ProfileKind}
 use serde::{Deserialize, Serialize};
 
 /// Levels at most below a block's own limits.
-pub const MAX_BANDS: usize = 6;
+pub const MAX_BANDS: usize = 20;
 
 /// The limits that hold at every path speed up to `v_top`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -41,11 +41,10 @@ impl Band {
 }
 
 /// Levels below a block's limits, by increasing speed (each with A and J above the next one's).
-/// Empty: the block's limits hold at every speed alike (lines).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+/// Empty: the block's limits hold at every speed alike (lines), and nothing is allocated.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Bands {
-    len: u8,
-    levels: [Band; MAX_BANDS],
+    levels: Vec<Band>,
 }
 
 impl Bands {
@@ -68,24 +67,21 @@ impl Bands {
         kept.sort_by(|x, y| x.v_top.total_cmp(&y.v_top));
         kept.dedup_by(|a, b| a.v_top == b.v_top);
         let skip = kept.len().saturating_sub(MAX_BANDS);
-        let mut out = Bands::default();
-        for (slot, b) in out.levels.iter_mut().zip(&kept[skip..]) {
-            *slot = *b;
+        Bands {
+            levels: kept.split_off(skip),
         }
-        out.len = (kept.len() - skip) as u8;
-        out
     }
 
     pub fn len(&self) -> usize {
-        usize::from(self.len).min(MAX_BANDS)
+        self.levels.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.len() == 0
+        self.levels.is_empty()
     }
 
     pub fn levels(&self) -> &[Band] {
-        &self.levels[..self.len()]
+        &self.levels
     }
 }
 

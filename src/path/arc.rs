@@ -4,7 +4,7 @@
 use super::budget::Budget;
 use super::{add, cross, scale, Geo};
 use crate::config::Machine;
-use crate::feed::bands::{Band, Bands};
+use crate::feed::bands::{Band, Bands, MAX_BANDS};
 use crate::feed::Limits;
 use crate::gcode::Plane;
 use crate::Vec3;
@@ -333,105 +333,73 @@ impl Frame {
 
 /// A speed above any a curve allows (m/s): where the search for its budget's end starts.
 const CURVE_SPEED_CEILING: f64 = 1e4;
+/// Band tops lie on one grid of speeds for every curve, q^n m/s (n whole), from this share of
+/// the curve's speed limit up: so a higher feed, axis speed or chord tolerance only adds bands
+/// above the ones there were, and below it the budget is nearly whole anyway.
+const BAND_GRID: f64 = 1.189_207_115_002_721; // 2^(1/4)
+const BAND_FLOOR: f64 = 0.05;
+/// Share of the curve's speed limit (its budget's end) that its top speed may reach.
+const TOP_SHARE: f64 = 0.985;
+/// Share of the jerk a band's pair leaves (of what is left at zero tangential acceleration).
+const BAND_JERK_SHARE: f64 = 0.5;
 
-/// Golden-section steps of a band's acceleration (on its logarithm, over `BAND_A_RANGE` of the most
-/// its top speed leaves).
-const BAND_A_STEPS: usize = 40;
-const BAND_A_RANGE: f64 = 1e-4;
-
-/// Limits and speed bands of a curve (feed/bands.rs). v_0 is the curve's speed limit with no
-/// tangential acceleration or jerk left (axis limits with the centripetal and chain-rule terms,
-/// chord error, cap); the band tops are the fractions `tops` of it, the last the curve's v_max.
-/// At a band's top speed v the axes leave A ≤ min_i (A_i − |d2_i|·v²)/|d1_i| and, with A,
-/// J = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·A)/|d1_i|: more acceleration leaves less jerk, and of
-/// the pairs (A, J) on that frontier the band takes the one whose ramp across it (Δv/A + A/J, or
-/// 2·sqrt(Δv/J)) is the quickest, at most the acceleration of the band below. Every pair holds at
-/// every speed up to its band's top (each term grows with v). All of it grows with every limit.
-pub fn curve_bands(
-    cells: &[[Vec3; 3]],
-    rho: f64,
-    v_cap: f64,
-    machine: &Machine,
-    tops: &[f64],
-) -> (Limits, Bands) {
+/// Limits and speed bands of a curve (feed/bands.rs). v_0 is where the curve's budget ends: the
+/// speed with no tangential acceleration or jerk left (the centripetal and chain-rule terms take
+/// the axes' acceleration or jerk). The top speed is `TOP_SHARE` of it, within the caps (axis
+/// speeds, chord error, feed); the bands end at the grid speeds below it (`BAND_GRID`). At a
+/// speed v the axes leave A(v) = min_i (A_i − |d2_i|·v²)/|d1_i| and, with acceleration a, the
+/// jerk J(v, a) = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i|. A band ending at v takes the jerk
+/// at least j = `BAND_JERK_SHARE`·J(v, 0) and the most acceleration that leaves it, min(A(v), a with
+/// J(v, a) = j) and with it the jerk J(v, a) ≥ j: both grow with every jerk limit, the
+/// acceleration with every acceleration limit, and the pair holds at every speed up to v
+/// (each term grows with v). The top band takes its pair at the next grid speed above the top
+/// (or at the top, where the curve itself limits it), so a band's pair does not depend on the
+/// caps: a higher cap leaves every band as it was and adds speed above.
+pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (Limits, Bands) {
     let frame = Frame::of(cells, rho, v_cap, machine);
     let zero = Shares {
         a_cap: 1.0,
         tangential: 0.0,
     };
     let budget = frame.budget(cells, machine, zero);
-    // Where the acceleration and jerk budgets run out (not the axis speeds, the chord error or
-    // the feed: the bands are where the budget changes, whatever caps the speed).
     let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
-    let v_cap = budget.max_speed(frame.v0).0;
-    if v_zero <= 0.0 || v_cap <= 0.0 {
+    let v_capped = budget.max_speed(frame.v0).0;
+    let v_curve = TOP_SHARE * v_zero;
+    let v_top = v_curve.min(v_capped);
+    let pair = |v: f64| {
+        let j = BAND_JERK_SHARE * budget.jerk_with(v, 0.0);
+        let a = budget.acceleration_at(v).min(budget.acceleration_leaving(v, j));
+        (a, budget.jerk_with(v, a).max(j))
+    };
+    if v_top <= 0.0 || !v_top.is_finite() {
         return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
     }
-    let v_top = tops.last().map_or(v_zero, |f| f * v_zero).min(v_cap);
-    let (mut floor, mut a_below) = (0.0, f64::INFINITY);
-    let mut levels: Vec<Band> = Vec::with_capacity(tops.len());
-    for v in tops.iter().map(|&f| (f * v_zero).min(v_top)) {
-        if v <= floor {
-            break;
+    let grid = |n: i32| BAND_GRID.powi(n);
+    let n_top = v_top.log(BAND_GRID).ceil() as i32;
+    let n_low = (BAND_FLOOR * v_zero).log(BAND_GRID).ceil() as i32;
+    let mut levels = Vec::new();
+    for n in n_low.max(n_top - MAX_BANDS as i32)..n_top {
+        let v = grid(n);
+        if v > 0.0 && v < v_top {
+            let (a, j) = pair(v);
+            levels.push(Band {
+                v_top: v,
+                a_max: a,
+                j_max: j,
+            });
         }
-        let (a, j) = quickest_pair(&budget, v, v - floor, a_below);
-        (floor, a_below) = (v, a);
-        levels.push(Band {
-            v_top: v,
-            a_max: a,
-            j_max: j,
-        });
     }
-    let top = levels.last().expect("a top speed");
+    let (a, j) = pair(grid(n_top).min(v_curve).max(v_top));
     let limits = Limits {
-        v_max: top.v_top,
-        a_max: top.a_max,
-        j_max: top.j_max,
+        v_max: v_top,
+        a_max: a,
+        j_max: j,
         snap_max: machine.max_snap,
     };
+    if a <= 0.0 || j <= 0.0 {
+        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
+    }
     (limits, Bands::below(&limits, &levels))
-}
-
-/// The pair (A, J) on the budget's frontier at speed v, A ≤ `a_most`, whose ramp over `dv` is
-/// quickest (golden section on log A; the ramp time is unimodal in A).
-fn quickest_pair(budget: &Budget, v: f64, dv: f64, a_most: f64) -> (f64, f64) {
-    let a_hi = budget.acceleration_at(v).min(a_most);
-    if a_hi.is_nan() || a_hi <= 0.0 {
-        return (0.0, 0.0);
-    }
-    let time = |x: f64| {
-        let a = a_hi * x.exp();
-        let j = budget.jerk_with(v, a);
-        if j <= 0.0 || j.is_nan() {
-            f64::INFINITY
-        } else if dv * j <= a * a {
-            2.0 * (dv / j).sqrt()
-        } else {
-            dv / a + a / j
-        }
-    };
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut lo, mut hi) = (BAND_A_RANGE.ln(), 0.0);
-    let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-    let (mut t1, mut t2) = (time(x1), time(x2));
-    for _ in 0..BAND_A_STEPS {
-        if t1 <= t2 {
-            hi = x2;
-            (x2, t2) = (x1, t1);
-            x1 = hi - g * (hi - lo);
-            t1 = time(x1);
-        } else {
-            lo = x1;
-            (x1, t1) = (x2, t2);
-            x2 = lo + g * (hi - lo);
-            t2 = time(x2);
-        }
-    }
-    // The end of the range itself (the most acceleration) where the ramp is fastest there.
-    let (x, t) = if t1 <= t2 { (x1, t1) } else { (x2, t2) };
-    let x = if time(0.0) <= t { 0.0 } else { x };
-    let a = a_hi * x.exp();
-    (a, budget.jerk_with(v, a).max(0.0))
 }
 
 /// Largest per-axis bounds over the cells.

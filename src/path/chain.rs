@@ -152,13 +152,9 @@ impl Chain {
     }
 }
 
-/// Tops of a curve's speed bands as fractions of its speed limit without tangential motion
-/// (`curve_bands`), from low speed to high: the last is the curve's top speed.
-const BAND_TOPS: [f64; 7] = [0.35, 0.55, 0.7, 0.8, 0.88, 0.94, 0.985];
-
 /// What the planner needs of a piece or chain: its limits (at every speed up to v_max), the wider
 /// ones at lower speeds, and the speed class by which pieces are grouped into chains.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CurveLimits {
     pub limits: Limits,
     pub bands: Bands,
@@ -170,7 +166,7 @@ pub struct CurveLimits {
 pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
     let k = norm(max_bounds(cells)[1]);
     let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-    let (limits, bands) = curve_bands(cells, rho, v_cap, m, &BAND_TOPS);
+    let (limits, bands) = curve_bands(cells, rho, v_cap, m);
     CurveLimits {
         limits,
         bands,

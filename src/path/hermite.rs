@@ -221,7 +221,7 @@ pub fn bezier(a: &Jet, b: &Jet, l: f64) -> [Vec3; 6] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::path::Blend;
+    use crate::path::{norm, Blend};
 
     const MM: f64 = 1e-3;
 

@@ -377,7 +377,7 @@ impl SmoothBuilder {
             } else {
                 Some(known.unwrap_or_else(|| piece_limits(&cells, feed / sigma, m)))
             };
-            let (class, ramps) = match own {
+            let (class, ramps) = match &own {
                 Some(l) => (
                     l.class,
                     l.bands.levels().first().map_or(l.limits, |b| b.limits(&l.limits)),
