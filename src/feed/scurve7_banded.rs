@@ -11,11 +11,11 @@
 //!   acceleration from which jerk −J_k brings it to zero at v_hi and below each band's A_k on
 //!   the way.
 //!
-//! The band accelerations used are non-increasing with speed (each the least of its own and the
-//! ones below: a smaller acceleration keeps the band's jerk valid), so B falls as v rises and F
-//! rises until it meets B: one crossing, F before it, B after. Each piece of either is one phase
-//! of constant jerk (±J_k or 0); the ramp time and distance are sums over the phases, in closed
-//! form. A speed drop is the time reverse of the rise between the same speeds. A block is ramp,
+//! Both are continuous where they bind: F drops at a band edge only onto a lower band's A, which
+//! B already keeps below; B rises at an edge only onto a higher band's A, from which F is below.
+//! So min(F, B) is continuous, feasible and, taking the most acceleration at every speed, the
+//! fastest. Each of its pieces is one phase of constant jerk (±J_k or 0); the ramp time and
+//! distance are sums over the phases, in closed form. A speed drop is the time reverse of the rise between the same speeds. A block is ramp,
 //! cruise, ramp as in scurve7.rs; the peak, the largest entry and exit are found by bisection on
 //! the ramp distance (increasing in the far speed), bounded.
 
@@ -25,8 +25,8 @@ use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
 use super::{FeedLaw, Kin};
 use serde::{Deserialize, Serialize};
 
-/// Pieces at most in a ramp: a rise and a plateau per band in each envelope.
-const MAX_PIECES: usize = 4 * (MAX_BANDS + 1);
+/// Pieces at most in an envelope: a rise and a plateau per band.
+const MAX_PIECES: usize = 2 * (MAX_BANDS + 1);
 
 /// a² = alpha + beta·v on [v0, v1] (beta = 2·jerk; 0 on a plateau).
 #[derive(Clone, Copy, Debug, Default)]
@@ -80,8 +80,7 @@ pub struct Phase {
     pub a0: f64,
 }
 
-/// A band of the ramp: speeds [floor, top] with acceleration `a` (non-increasing with speed)
-/// and jerk `j`.
+/// A band of the ramp: speeds [floor, top] with acceleration `a` and jerk `j`.
 #[derive(Clone, Copy, Debug)]
 struct Level {
     floor: f64,
@@ -99,16 +98,14 @@ fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
         j: 0.0,
     }; MAX_BANDS + 1];
     let mut n = 0;
-    let mut a_below = f64::INFINITY;
     for k in 0..b.count() {
         let lim = b.limits(k);
-        a_below = a_below.min(lim.a_max);
         let (floor, top) = (b.floor_of(k).max(lo), b.top_of(k).min(hi));
         if top > floor {
             out[n] = Level {
                 floor,
                 top,
-                a: a_below,
+                a: lim.a_max,
                 j: lim.j_max,
             };
             n += 1;
@@ -120,11 +117,13 @@ fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
     (out, n)
 }
 
-/// The speed rise lo → hi as constant-jerk pieces in the phase plane (see the module comment).
-fn rise_pieces(b: &Banded, lo: f64, hi: f64) -> Pieces {
+/// The speed rise lo → hi as constant-jerk pieces in the phase plane, in order, to `take`
+/// (see the module comment).
+fn rise(b: &Banded, lo: f64, hi: f64, mut take: impl FnMut(&Piece)) {
     let (levels, n) = levels(b, lo, hi);
     let levels = &levels[..n];
-    // Forward envelope.
+    // Forward envelope: a² grows by 2·J per unit of speed up to each band's A (cut to it at the
+    // band's floor where the band below allowed more).
     let mut fwd = Pieces::new();
     let mut f: f64 = 0.0;
     for l in levels {
@@ -149,21 +148,21 @@ fn rise_pieces(b: &Banded, lo: f64, hi: f64) -> Pieces {
             f = (f * f + 2.0 * l.j * (l.top - l.floor)).sqrt();
         }
     }
-    // Backward envelope, built from the top down, then put in order.
-    let mut bwd_rev = Pieces::new();
+    // Backward envelope: the same from hi down (pieces by decreasing speed).
+    let mut bwd = Pieces::new();
     let mut g: f64 = 0.0;
     for l in levels.iter().rev() {
         let g0 = g.min(l.a);
         let reach = l.top - (l.a * l.a - g0 * g0) / (2.0 * l.j);
         let start = reach.max(l.floor);
-        bwd_rev.push(Piece {
+        bwd.push(Piece {
             v0: start,
             v1: l.top,
             alpha: g0 * g0 + 2.0 * l.j * l.top,
             beta: -2.0 * l.j,
         });
         if start > l.floor {
-            bwd_rev.push(Piece {
+            bwd.push(Piece {
                 v0: l.floor,
                 v1: start,
                 alpha: l.a * l.a,
@@ -174,52 +173,35 @@ fn rise_pieces(b: &Banded, lo: f64, hi: f64) -> Pieces {
             g = (g0 * g0 + 2.0 * l.j * (l.top - l.floor)).sqrt();
         }
     }
-    let mut bwd = Pieces::new();
-    for p in bwd_rev.as_slice().iter().rev() {
-        bwd.push(*p);
-    }
-    // The first speed where F reaches B: F before it, B after.
-    let cross = crossing(fwd.as_slice(), bwd.as_slice()).unwrap_or(hi);
-    let mut out = Pieces::new();
-    for p in fwd.as_slice() {
-        out.push(Piece {
-            v1: p.v1.min(cross),
-            ..*p
-        });
-    }
-    for p in bwd.as_slice() {
-        out.push(Piece {
-            v0: p.v0.max(cross),
-            ..*p
-        });
-    }
-    out
-}
-
-/// First v where F² − B² ≥ 0, over the overlaps of their pieces (linear in v on each).
-fn crossing(fwd: &[Piece], bwd: &[Piece]) -> Option<f64> {
-    let (mut i, mut k) = (0, 0);
-    while i < fwd.len() && k < bwd.len() {
-        let (f, b) = (&fwd[i], &bwd[k]);
-        let (u0, u1) = (f.v0.max(b.v0), f.v1.min(b.v1));
-        if u1 >= u0 {
-            let g = |u: f64| (f.alpha - b.alpha) + (f.beta - b.beta) * u;
-            if g(u1) >= 0.0 {
-                let slope = f.beta - b.beta;
-                return Some(if g(u0) >= 0.0 || slope <= 0.0 {
-                    u0
-                } else {
-                    (u0 - g(u0) / slope).clamp(u0, u1)
-                });
+    let (fwd, bwd) = (fwd.as_slice(), bwd.as_slice());
+    // min(F, B) over the common refinement of both: on each stretch both are a² linear in v, so
+    // the smaller is the one below at its ends, the stretch split where they cross.
+    let (mut i, mut k) = (0, bwd.len());
+    while i < fwd.len() && k > 0 {
+        let (fp, bp) = (&fwd[i], &bwd[k - 1]);
+        let (u0, u1) = (fp.v0.max(bp.v0), fp.v1.min(bp.v1));
+        if u1 > u0 {
+            let d = |u: f64| (fp.alpha - bp.alpha) + (fp.beta - bp.beta) * u;
+            let (d0, d1) = (d(u0), d(u1));
+            let piece = |x0: f64, x1: f64, forward: bool| Piece {
+                v0: x0,
+                v1: x1,
+                ..*(if forward { fp } else { bp })
+            };
+            if (d0 <= 0.0) == (d1 <= 0.0) {
+                take(&piece(u0, u1, d0 + d1 <= 0.0));
+            } else {
+                let root = (u0 - d0 * (u1 - u0) / (d1 - d0)).clamp(u0, u1);
+                take(&piece(u0, root, d0 <= 0.0));
+                take(&piece(root, u1, d1 <= 0.0));
             }
         }
-        if f.v1 <= b.v1 {
+        if fp.v1 <= bp.v1 {
             i += 1;
         } else {
-            k += 1;
+            k -= 1;
         }
     }
-    None
 }
 
 /// Duration and jerk of each piece as a phase.
@@ -240,12 +222,12 @@ fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
         return (0.0, 0.0);
     }
     let (mut t, mut s) = (0.0, 0.0);
-    for p in rise_pieces(b, lo, hi).as_slice() {
+    rise(b, lo, hi, |p| {
         let (tau, j) = phase_of(p);
         let a0 = p.a2(p.v0).sqrt();
         t += tau;
         s += tau * (p.v0 + tau * (0.5 * a0 + tau * j / 6.0));
-    }
+    });
     (t, s)
 }
 
@@ -333,17 +315,11 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
 }
 
 fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {
-    let up: Vec<(f64, f64)> = rise_pieces(b, v_in, v_c)
-        .as_slice()
-        .iter()
-        .map(phase_of)
-        .collect();
+    let mut up: Vec<(f64, f64)> = Vec::new();
+    rise(b, v_in, v_c, |p| up.push(phase_of(p)));
     // The drop is the rise v_end → v_c played backwards: the same phases in reverse order.
-    let mut down: Vec<(f64, f64)> = rise_pieces(b, v_end, v_c)
-        .as_slice()
-        .iter()
-        .map(phase_of)
-        .collect();
+    let mut down: Vec<(f64, f64)> = Vec::new();
+    rise(b, v_end, v_c, |p| down.push(phase_of(p)));
     down.reverse();
     let ramps = rise_time_distance(b, v_in.min(v_c), v_c).1 + rise_time_distance(b, v_end.min(v_c), v_c).1;
     let cruise = if v_c > 0.0 {
@@ -519,14 +495,27 @@ mod tests {
         (top, bands)
     }
 
-    /// The band of speed v: its acceleration (the least of it and the ones below) and jerk.
+    /// Bands whose acceleration rises and falls with speed (a middle band allows more).
+    fn mixed_bands() -> (Limits, Bands) {
+        let top = limits(0.25, 0.5, 30.0);
+        let bands = Bands::below(
+            &top,
+            &[
+                band(0.05, 0.8, 80.0),
+                band(0.12, 1.9, 40.0),
+                band(0.18, 0.7, 300.0),
+                band(0.22, 1.1, 20.0),
+            ],
+        );
+        (top, bands)
+    }
+
+    /// The band of speed v: its acceleration and jerk.
     fn band_limits(b: &Banded, v: f64) -> (f64, f64) {
-        let mut a = f64::INFINITY;
         for k in 0..b.count() {
             let l = b.limits(k);
-            a = a.min(l.a_max);
             if v <= b.top_of(k) {
-                return (a, l.j_max);
+                return (l.a_max, l.j_max);
             }
         }
         unreachable!()
@@ -537,11 +526,16 @@ mod tests {
     /// and never slower than ramping band by band with the acceleration zero at each edge.
     #[test]
     fn blocks_keep_each_bands_limits() {
-        let (top, bands) = falling_bands();
+        for (top, bands) in [falling_bands(), mixed_bands()] {
+            blocks_within(&top, &bands);
+        }
+    }
+
+    fn blocks_within(top: &Limits, bands: &Bands) {
         let b = Banded {
             kind: ProfileKind::Scurve7,
-            top: &top,
-            bands: &bands,
+            top,
+            bands,
         };
         let by_parts = Banded {
             kind: ProfileKind::Quintic,

@@ -348,13 +348,15 @@ const BAND_JERK_SHARE: f64 = 0.5;
 /// the axes' acceleration or jerk). The top speed is `TOP_SHARE` of it, within the caps (axis
 /// speeds, chord error, feed); the bands end at the grid speeds below it (`BAND_GRID`). At a
 /// speed v the axes leave A(v) = min_i (A_i − |d2_i|·v²)/|d1_i| and, with acceleration a, the
-/// jerk J(v, a) = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i|. A band ending at v takes the jerk
-/// at least j = `BAND_JERK_SHARE`·J(v, 0) and the most acceleration that leaves it, min(A(v), a with
-/// J(v, a) = j) and with it the jerk J(v, a) ≥ j: both grow with every jerk limit, the
-/// acceleration with every acceleration limit, and the pair holds at every speed up to v
-/// (each term grows with v). The top band takes its pair at the next grid speed above the top
-/// (or at the top, where the curve itself limits it), so a band's pair does not depend on the
-/// caps: a higher cap leaves every band as it was and adds speed above.
+/// jerk J(v, a) = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i|: more acceleration leaves less
+/// jerk. A band ending at v reserves the jerk terms of an acceleration a_r that depends on the
+/// jerk limits only — the one leaving `BAND_JERK_SHARE` of J(v, 0), and no more than
+/// sqrt(2·v·J(v, 0)), about the most a ramp within the band reaches — and takes
+/// (min(A(v), a_r), J(v, a_r)): the acceleration grows with every acceleration limit, the jerk
+/// with every jerk limit, and the pair holds at every speed up to v (each term grows with v).
+/// The top band takes its pair at the next grid speed above the top (or at the top, where the
+/// curve itself limits it), so a band's pair does not depend on the caps: a higher cap leaves
+/// every band as it was and adds speed above.
 pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (Limits, Bands) {
     let frame = Frame::of(cells, rho, v_cap, machine);
     let zero = Shares {
@@ -367,9 +369,12 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
     let v_curve = TOP_SHARE * v_zero;
     let v_top = v_curve.min(v_capped);
     let pair = |v: f64| {
-        let j = BAND_JERK_SHARE * budget.jerk_with(v, 0.0);
-        let a = budget.acceleration_at(v).min(budget.acceleration_leaving(v, j));
-        (a, budget.jerk_with(v, a).max(j))
+        let j0 = budget.jerk_with(v, 0.0);
+        let reserved = budget
+            .acceleration_leaving(v, BAND_JERK_SHARE * j0)
+            .min((2.0 * v * j0.max(0.0)).sqrt());
+        let a = budget.acceleration_at(v).min(reserved);
+        (a, budget.jerk_with(v, reserved))
     };
     if v_top <= 0.0 || !v_top.is_finite() {
         return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
