@@ -231,6 +231,12 @@ fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
     (t, s)
 }
 
+/// Time of the fastest speed change v1 → v2 under the bands (with none, scurve7's).
+pub fn ramp_time(b: &Banded, v1: f64, v2: f64) -> f64 {
+    let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
+    rise_time_distance(b, lo, hi).0
+}
+
 /// Distance of the fastest speed change v1 → v2 under the bands.
 pub fn ramp_distance(b: &Banded, v1: f64, v2: f64) -> f64 {
     let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
@@ -274,6 +280,7 @@ pub fn lowest_exit(b: &Banded, length: f64, v_in: f64, target: f64) -> f64 {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Scurve7Banded {
     phases: Vec<Phase>,
+    v_peak: f64,
     v_end: f64,
     duration: f64,
     length: f64,
@@ -358,6 +365,7 @@ fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Ban
     }
     Scurve7Banded {
         phases,
+        v_peak: v_c,
         v_end: if v_end < v_c { v_end } else { v_c },
         duration: t,
         length: s,
@@ -369,6 +377,13 @@ fn advance(dt: f64, v: f64, a: f64, jerk: f64) -> (f64, f64, f64) {
     let ds = dt * (v + dt * (0.5 * a + dt * jerk / 6.0));
     let dv = dt * (a + 0.5 * jerk * dt);
     (ds, dv, jerk * dt)
+}
+
+impl Scurve7Banded {
+    /// The cruise speed (the highest speed of the block).
+    pub fn v_peak(&self) -> f64 {
+        self.v_peak
+    }
 }
 
 impl FeedLaw for Scurve7Banded {

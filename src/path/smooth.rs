@@ -25,8 +25,8 @@ use super::junction::transition;
 use super::source::{distance_to_segment, Source};
 use super::{add, cross, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment};
 use crate::config::Machine;
-use crate::feed::bands::Bands;
-use crate::feed::Limits;
+use crate::feed::bands::{Banded, Bands};
+use crate::feed::{scurve7_banded, FeedLaw, Limits, ProfileKind};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -135,6 +135,8 @@ pub struct SmoothBuilder {
     chain_class: f64,
     /// Time the chain's pieces lose to running at `chain_class` (`loss_if_joined`).
     chain_loss: f64,
+    /// The limits and bands its first piece ramps within (`joining_pays`).
+    chain_ramps: Option<(Limits, Bands)>,
     chain_straight: bool,
     /// Largest |p'| over the chain: the feed in the chain parameter is the feed over it.
     chain_sigma: f64,
@@ -153,6 +155,7 @@ impl SmoothBuilder {
             chain_feed: 0.0,
             chain_class: 0.0,
             chain_loss: 0.0,
+            chain_ramps: None,
             chain_straight: true,
             chain_sigma: 1.0,
             chain_single: None,
@@ -371,41 +374,45 @@ impl SmoothBuilder {
             piece.curve.cells(|c| cells.push(c));
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
-            // The speed class is the piece's own v_max, and its ramps' limits those at low speed.
+            // The speed class is the piece's own v_max; its ramps are within its own limits.
             let own = if straight {
                 None
             } else {
                 Some(known.unwrap_or_else(|| piece_limits(&cells, feed / sigma, m)))
             };
             let (class, ramps) = match &own {
-                Some(l) => (
-                    l.class,
-                    l.bands.levels().first().map_or(l.limits, |b| b.limits(&l.limits)),
-                ),
+                Some(l) => (l.class, (l.limits, l.bands.clone())),
                 None => {
                     let Curve::Line(line) = piece.curve else {
                         unreachable!("straight pieces are lines")
                     };
                     let class = super::constant_speed_limit(&max_bounds(&cells), m).min(feed / sigma);
-                    (class, line_limits(line.direction(), m))
+                    (class, (line_limits(line.direction(), m), Bands::default()))
                 }
             };
-            let loss = loss_if_joined(
-                self.chain_loss,
-                self.chain.length(),
-                self.chain_class,
-                piece.length(),
-                class,
-            );
-            let fits = !self.chain.is_empty()
+            let fast = match &self.chain_ramps {
+                Some(chain) if class <= self.chain_class => chain,
+                _ => &ramps,
+            };
+            let joined = if !self.chain.is_empty()
                 && feed == self.chain_feed
                 && straight == self.chain_straight
                 && self.chain.pieces.len() < CHAIN_MAX_PIECES
-                && joining_pays(loss, self.chain_class, class, &ramps);
-            if fits {
+            {
+                joined_loss(
+                    self.chain_loss,
+                    (self.chain.length(), self.chain_class),
+                    (piece.length(), class),
+                    fast,
+                )
+            } else {
+                None
+            };
+            if let Some(loss) = joined {
                 self.chain_loss = loss;
                 self.chain_single = None;
             } else {
+                self.chain_ramps = Some(ramps);
                 self.close_chain(f64::INFINITY, m, out);
                 self.chain_feed = feed;
                 self.chain_class = class;
@@ -479,40 +486,41 @@ pub(super) fn jet_at(piece: &Piece, u: f64) -> Jet {
     }
 }
 
-/// What the chain's pieces lose, in time, to running at the chain's speed class rather than each
-/// at its own: Σ L_i·(1/v_chain − 1/v_i), in seconds, if a piece of `length` and `class` joins a
-/// chain of `chain_length` at `chain_class` that already loses `chain_loss`.
-fn loss_if_joined(chain_loss: f64, chain_length: f64, chain_class: f64, length: f64, class: f64) -> f64 {
-    if class >= chain_class {
-        chain_loss + length * (1.0 / chain_class - 1.0 / class)
-    } else {
-        chain_loss + chain_length * (1.0 / class - 1.0 / chain_class)
-    }
-}
-
-/// Whether a piece should join the chain rather than start the next one, by the time each way
-/// costs. Joined, every piece runs at the slowest one's speed: the chain loses `loss` (above).
-/// Apart, their junction is a block end, where the acceleration is zero: a ramp from rest to
-/// the faster speed through it takes T(v_slow) + T(Δv) rather than T(v_fast), and the speed
-/// change between them a ramp that covers (v_slow + v_fast)/2·T(Δv), Δv·T(Δv)/(2·v_fast) longer
-/// than that distance at the faster speed (T the 7-phase ramp time within `ramps`). Decided on
-/// their times, the two ways cost about the same where the choice changes with a limit.
-fn joining_pays(loss: f64, chain_class: f64, class: f64, ramps: &Limits) -> bool {
+/// Whether a piece of `length` and speed class `class` should join the chain (of `chain_length`
+/// at `chain_class`, whose pieces already lose `chain_loss` to it) rather than start the next
+/// one, by the time each way costs; the chain's loss if it joins. Joined, the faster side runs
+/// at the slower one's speed v_slow over its length L. Apart, it is a block entered and left at
+/// v_slow, reaching what it can of its own speed within its length (planned, within the faster
+/// side's limits and bands `fast`): that saves L/v_slow − T_block. Their junction is then a
+/// block end, where the acceleration is zero: a ramp from rest to the block's peak through it
+/// takes T(0, v_slow) + T(v_slow, v_peak) rather than T(0, v_peak). Joining pays when what the
+/// pieces lose to it, added up over the chain, stays within that. Decided on their times, the
+/// two ways cost about the same where the choice changes with a limit.
+fn joined_loss(
+    chain_loss: f64,
+    (chain_length, chain_class): (f64, f64),
+    (length, class): (f64, f64),
+    fast: &(Limits, Bands),
+) -> Option<f64> {
     let (v_slow, v_fast) = (chain_class.min(class), chain_class.max(class));
-    if v_fast <= 0.0 {
-        return true;
+    if v_fast <= v_slow {
+        return Some(chain_loss);
     }
-    let (a, j) = (ramps.a_max, ramps.j_max);
-    let t = |dv: f64| {
-        if dv * j <= a * a {
-            2.0 * (dv / j).sqrt()
-        } else {
-            dv / a + a / j
-        }
+    if v_slow <= 0.0 {
+        return None;
+    }
+    let l_fast = if class < chain_class { chain_length } else { length };
+    let banded = Banded {
+        kind: ProfileKind::Scurve7,
+        top: &fast.0,
+        bands: &fast.1,
     };
-    let dv = v_fast - v_slow;
-    let apart = t(v_slow) + t(dv) - t(v_fast) + 0.5 * t(dv) * dv / v_fast;
-    loss <= apart
+    let block = scurve7_banded::plan(&banded, l_fast, v_slow, v_slow, v_fast);
+    let loss = chain_loss + (l_fast / v_slow - block.duration()).max(0.0);
+    let t = |a: f64, b: f64| scurve7_banded::ramp_time(&banded, a, b);
+    let v_peak = block.v_peak();
+    let apart = t(0.0, v_slow) + t(v_slow, v_peak) - t(0.0, v_peak);
+    (loss <= apart).then_some(loss)
 }
 
 /// The vertex between two moves is smooth: two short line moves of one feed and similar
