@@ -333,11 +333,11 @@ impl Frame {
 
 /// A speed above any a curve allows (m/s): where the search for its budget's end starts.
 const CURVE_SPEED_CEILING: f64 = 1e4;
-/// Band tops lie on one grid of speeds for every curve, q^n m/s (n whole), from this share of
-/// the curve's speed limit up: so a higher feed, axis speed or chord tolerance only adds bands
-/// above the ones there were, and below it the budget is nearly whole anyway.
+/// Band tops lie on one grid of speeds for every curve, q^n m/s (n whole), the `MAX_BANDS`
+/// below its top speed: so a higher feed, axis speed or chord tolerance only adds bands above
+/// the ones there were (and drops the lowest, 1/q^MAX_BANDS of the top, where the budget is
+/// nearly whole).
 const BAND_GRID: f64 = 1.189_207_115_002_721; // 2^(1/4)
-const BAND_FLOOR: f64 = 0.05;
 /// Share of the curve's speed limit (its budget's end) that its top speed may reach.
 const TOP_SHARE: f64 = 0.985;
 /// Share of the jerk a band's pair leaves (of what is left at zero tangential acceleration).
@@ -381,9 +381,8 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
     }
     let grid = |n: i32| BAND_GRID.powi(n);
     let n_top = v_top.log(BAND_GRID).ceil() as i32;
-    let n_low = (BAND_FLOOR * v_zero).log(BAND_GRID).ceil() as i32;
     let mut levels = Vec::new();
-    for n in n_low.max(n_top - MAX_BANDS as i32)..n_top {
+    for n in n_top - MAX_BANDS as i32..n_top {
         let v = grid(n);
         if v > 0.0 && v < v_top {
             let (a, j) = pair(v);
