@@ -15,8 +15,9 @@ use std::collections::VecDeque;
 
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
 // 3: reader NC state (tools, offsets, compensation, parameters); 4: O-word flow, G93, inch setup;
-// 5: override and hold in the plan stage; 6: the smooth mode's held sub-tolerance moves.
-const STATE_VERSION: u32 = 6;
+// 5: override and hold in the plan stage; 6: the smooth mode's held sub-tolerance moves;
+// 7: speed bands on path blocks and the banded S-curve profile.
+const STATE_VERSION: u32 = 7;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;

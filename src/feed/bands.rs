@@ -18,7 +18,7 @@ use super::{scurve7_banded, BlockRequest, FeedLaw, Limits, Profile, ProfileKind}
 use serde::{Deserialize, Serialize};
 
 /// Levels at most below a block's own limits.
-pub const MAX_BANDS: usize = 24;
+pub const MAX_BANDS: usize = 16;
 
 /// The limits that hold at every path speed up to `v_top`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -16,11 +16,11 @@
 //! So min(F, B) is continuous, feasible and, taking the most acceleration at every speed, the
 //! fastest. Each of its pieces is one phase of constant jerk (±J_k or 0); the ramp time and
 //! distance are sums over the phases, in closed form. A speed drop is the time reverse of the rise between the same speeds. A block is ramp,
-//! cruise, ramp as in scurve7.rs; the peak, the largest entry and exit are found by bisection on
+//! cruise, ramp as in scurve7.rs; the peak, the largest entry and exit are found by regula falsi on
 //! the ramp distance (increasing in the far speed), bounded.
 
 use super::bands::{Banded, MAX_BANDS};
-use super::roots::bisect;
+use super::roots::falsi;
 use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
 use super::{FeedLaw, Kin};
 use serde::{Deserialize, Serialize};
@@ -244,7 +244,7 @@ pub fn ramp_distance(b: &Banded, v1: f64, v2: f64) -> f64 {
 }
 
 /// Largest v ≥ v0 with a ramp between v0 and v within `length` (max_entry and max_exit alike):
-/// the distance grows with v; bracket by doubling, then bisection on it as evaluated.
+/// the distance grows with v; bracket by doubling, then regula falsi on it as evaluated.
 pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
     let v0 = v0.max(0.0);
     let length = length.max(0.0);
@@ -254,7 +254,7 @@ pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
     for _ in 0..BRACKET_DOUBLINGS {
         let hi = v0 + step;
         if d(hi).is_nan() || d(hi) > length {
-            return bisect(good, hi, |v| d(v) <= length);
+            return falsi(good, hi, |v| d(v) - length);
         }
         good = hi;
         step *= 2.0;
@@ -264,7 +264,7 @@ pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
 
 /// Largest exit x ≤ `target` with a ramp from `v_in` within `length`, when a stop fits (0 if
 /// not): the distance from v_in rises as the exit falls from v_in and may fall again towards 0,
-/// so below the target the exits that fit are [0, x1]: bisection for x1.
+/// so below the target the exits that fit are [0, x1]: regula falsi for x1.
 pub fn lowest_exit(b: &Banded, length: f64, v_in: f64, target: f64) -> f64 {
     let d = |x: f64| ramp_distance(b, v_in, x);
     if d(target) <= length {
@@ -273,7 +273,7 @@ pub fn lowest_exit(b: &Banded, length: f64, v_in: f64, target: f64) -> f64 {
     if d(0.0) > length {
         return 0.0;
     }
-    bisect(0.0, target, |x| d(x) <= length)
+    falsi(0.0, target, |x| d(x) - length)
 }
 
 /// One block's profile under bands: ramp, cruise, ramp.
@@ -306,7 +306,7 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
             (v_in, lowest_exit(b, length, v_in, v_out))
         } else {
             // It does not: the smallest drop that fits, above v_out.
-            (v_in, bisect(v_in, v_out, |x| d(v_in, x) <= length))
+            (v_in, falsi(v_in, v_out, |x| d(v_in, x) - length))
         }
     } else {
         let v_hi = v_in.max(v_out);
@@ -314,7 +314,7 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
         let v_c = if v_feed <= v_hi || total(v_feed) <= length {
             v_feed.max(v_hi)
         } else {
-            bisect(v_hi, v_feed, |v| total(v) <= length)
+            falsi(v_hi, v_feed, |v| total(v) - length)
         };
         (v_c, v_out)
     };

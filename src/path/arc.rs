@@ -337,7 +337,7 @@ const CURVE_SPEED_CEILING: f64 = 1e4;
 /// below its top speed: so a higher feed, axis speed or chord tolerance only adds bands above
 /// the ones there were (and drops the lowest, 1/q^MAX_BANDS of the top, where the budget is
 /// nearly whole).
-const BAND_GRID: f64 = 1.189_207_115_002_721; // 2^(1/4)
+const BAND_GRID: f64 = 1.259_921_049_894_873_2; // 2^(1/3)
 /// Share of the curve's speed limit (its budget's end) that its top speed may reach.
 const TOP_SHARE: f64 = 0.985;
 /// Share of the jerk a band's pair leaves (of what is left at zero tangential acceleration).
