@@ -1,22 +1,61 @@
 # cnc-motion: the two commands are `make demo` and `make test` (see README.md).
-VENV   := .venv
-PY     := $(VENV)/bin/python
 PYTHON ?= python3
 CARGO  ?= cargo
 # Binaries follow CARGO_TARGET_DIR when it is set; the FMUs always go to target/fmu.
 BIN    := $(or $(CARGO_TARGET_DIR),target)/release
+# The demo's environment: the package installed as a user installs it (not editable, the FMUs
+# inside it) with the `plot` extra. Every version pinned by constraints.txt.
+VENV   := .venv
+PY     := $(VENV)/bin/python
+# The full environment (tests, co-simulation masters, sweeps): the package editable, every extra.
+FULL   := .venv-full
+FPY    := $(FULL)/bin/python
+PIP    := pip install --quiet --disable-pip-version-check -c constraints.txt
+# Where the FMUs go into the Python package (package data, not committed).
+PKG_FMU := python/cnc_motion_sim/fmu
 
-.PHONY: all build fmu demo test test-rust test-python bench lint clean venv cosim sweep fuzz system-deps
+# cargo runs its jobs in parallel itself; the targets run in order (the venv's build backend calls
+# `make fmu` again, which must not race a `make fmu` of this run).
+.NOTPARALLEL:
+
+.PHONY: all build fmu demo test test-rust test-python bench lint clean venv venv-full ssp cosim sweep fuzz system-deps
 
 all: build
 
-venv: $(VENV)/.installed
+# One release build serves the demo and the tests: `cargo test --release` reuses every artifact
+# of this command (the FMU's shared library included) and only adds the test binaries. The
+# example (examples/plan_dump.rs) brings in the dev-dependencies, so that their features (serde's
+# `alloc`, syn's `full`, through criterion) are the same here as in the tests' build: without it
+# cargo compiles every crate that uses serde a second time for the tests.
+build:
+	$(CARGO) build --release --workspace --lib --bins --examples
 
-# Project-local virtual environment: the package in python/ (editable, with its test extras),
-# every version pinned by constraints.txt.
-$(VENV)/.installed: python/pyproject.toml constraints.txt
-	$(PYTHON) -m venv $(VENV)
-	$(VENV)/bin/pip install --quiet --disable-pip-version-check -c constraints.txt -e 'python[test]'
+# Both FMUs, then copied into the Python package (only when their bytes changed).
+STRUCTURE_PACKAGE ?= $(BIN)/package-machine-structure target/fmu/MachineStructure.fmu
+
+fmu: build
+	$(BIN)/cnc-motion package --output target/fmu/CncMotion.fmu
+	$(STRUCTURE_PACKAGE)
+	@mkdir -p $(PKG_FMU)
+	@for f in CncMotion MachineStructure; do \
+	  cmp -s target/fmu/$$f.fmu $(PKG_FMU)/$$f.fmu || cp target/fmu/$$f.fmu $(PKG_FMU)/$$f.fmu; done
+
+PY_SOURCES := constraints.txt python/pyproject.toml python/build_support/backend.py \
+              $(wildcard python/cnc_motion_sim/*.py)
+
+venv: fmu $(VENV)/.installed
+
+# Reinstalled when the package or its FMUs change (pip always rebuilds a local directory).
+$(VENV)/.installed: $(PY_SOURCES) $(wildcard $(PKG_FMU)/*.fmu)
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(VENV)/bin/$(PIP) './python[plot]'
+	touch $@
+
+venv-full: $(FULL)/.installed
+
+$(FULL)/.installed: constraints.txt python/pyproject.toml
+	test -x $(FPY) || $(PYTHON) -m venv $(FULL)
+	$(FULL)/bin/$(PIP) -e './python[test]'
 	touch $@
 
 # System libraries of the pinned Python packages: Ecos (ecospy) loads oneTBB's libtbb.so.12.
@@ -31,37 +70,32 @@ system-deps:
 	  else echo "missing $$lib: run 'sudo apt-get install $$pkg' (needed by ecospy)" >&2; exit 1; fi; \
 	done
 
-build:
-	$(CARGO) build --release --workspace --bins --lib
-
-# Both FMUs and the SSP that couples them (examples/cosim.ssp, generated, not committed).
-STRUCTURE_PACKAGE ?= $(BIN)/package-machine-structure target/fmu/MachineStructure.fmu
-
-fmu: build venv system-deps
-	$(BIN)/cnc-motion package --output target/fmu/CncMotion.fmu
-	$(STRUCTURE_PACKAGE)
-	$(PY) examples/make_ssp.py
-
-demo: fmu
+demo: venv
 	$(PY) examples/demo.py
 	$(PY) examples/cosim.py --out out
 
-cosim: fmu
-	$(PY) examples/cosim.py --master slaves
-	$(PY) examples/cosim.py --master fmpy-ssp
-	$(PY) examples/cosim.py --master libcosim
-	$(PY) examples/cosim.py --master ecos
+# examples/cosim.ssp: both FMUs and their coupling, for SSP importers (generated, not committed).
+ssp: venv
+	$(PY) -m cnc_motion_sim.ssp --out examples/cosim.ssp
 
-sweep: fmu
-	$(PY) examples/sweep.py
+cosim: fmu venv-full system-deps
+	$(FPY) examples/cosim.py --master slaves
+	$(FPY) examples/cosim.py --master fmpy-ssp
+	$(FPY) examples/cosim.py --master libcosim
+	$(FPY) examples/cosim.py --master ecos
+
+sweep: fmu venv-full
+	$(FPY) examples/sweep.py
 
 test: test-rust test-python
 
+# The release profile of `make build` (see there); the C-ABI tests load the shared library cargo
+# builds with them (target/release/deps/libcnc_motion.so; tests/common/mod.rs).
 test-rust:
-	$(CARGO) test --workspace
+	$(CARGO) test --release --workspace
 
-test-python: fmu
-	$(PY) -m pytest -q tests/python
+test-python: fmu venv-full system-deps
+	$(FPY) -m pytest -q tests/python
 
 # Fresh seeds, more cases: every property test with a new random seed (PROPTEST_RNG_SEED unset),
 # then the fuzz harness of tests/fuzz.rs with FUZZ_CASES mutated programs and machine files on a
@@ -81,4 +115,51 @@ lint:
 	$(CARGO) clippy --workspace --all-targets -- -D warnings
 
 clean:
-	rm -rf out target/fmu examples/cosim.ssp
+	rm -rf out target/fmu examples/cosim.ssp $(PKG_FMU) python/build
+
+# --- win64 in the same FMUs (issue 18): the two cdylibs cross-compiled for Windows with Debian's
+# mingw-w64 and tested under wine64 (tests/python/test_fmu_win64.py, harness in tests/c/).
+# Self-contained block: `fmu` and `system-deps` gain prerequisites here.
+WIN64_TARGET := x86_64-pc-windows-gnu
+WIN64_DIR    := $(or $(CARGO_TARGET_DIR),target)/$(WIN64_TARGET)/release
+WIN64_DLLS   := $(WIN64_DIR)/cnc_motion.dll $(WIN64_DIR)/machine_structure.dll
+# file:Debian package, installed with apt-get where the file is missing (Debian's wine64 puts its
+# loader in /usr/lib/wine, off the PATH).
+CROSS_DEBS   := /usr/bin/x86_64-w64-mingw32-gcc:gcc-mingw-w64-x86-64 /usr/lib/wine/wine64:wine64
+HARNESS_DIR  := target/harness
+
+.PHONY: win64 system-deps-cross harness
+
+fmu: win64
+system-deps: system-deps-cross
+test-python: harness
+
+win64: system-deps-cross
+	$(CARGO) build --release --lib --target $(WIN64_TARGET) -p cnc-motion -p machine-structure
+
+system-deps-cross:
+	@missing=; for pair in $(CROSS_DEBS); do file=$${pair%%:*}; \
+	  [ -x "$$file" ] || missing="$$missing $${pair#*:}"; done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing$$missing"; apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \
+	  else echo "missing:$$missing: run 'sudo apt-get install$$missing' (win64 cross build and test)" >&2; exit 1; fi; \
+	fi
+	@rustup target list --installed | grep -qx '$(WIN64_TARGET)' || rustup target add $(WIN64_TARGET)
+
+# The C importer of tests/c for Linux (dlopen) and Windows (LoadLibrary, run under wine), and the
+# bcryptprimitives.dll that wine 8 lacks (ProcessPrng, imported by Rust's std), beside the .exe.
+harness: $(HARNESS_DIR)/fmi2_harness $(HARNESS_DIR)/win64/fmi2_harness.exe $(HARNESS_DIR)/win64/bcryptprimitives.dll
+
+$(HARNESS_DIR)/fmi2_harness: tests/c/fmi2_harness.c
+	@mkdir -p $(@D)
+	$(CC) -O2 -Wall -Wextra -o $@ $< -ldl
+
+$(HARNESS_DIR)/win64/fmi2_harness.exe: tests/c/fmi2_harness.c | system-deps-cross
+	@mkdir -p $(@D)
+	x86_64-w64-mingw32-gcc -O2 -Wall -Wextra -o $@ $<
+
+$(HARNESS_DIR)/win64/bcryptprimitives.dll: tests/c/bcryptprimitives.c | system-deps-cross
+	@mkdir -p $(@D)
+	x86_64-w64-mingw32-gcc -O2 -Wall -shared -o $@ $< -ladvapi32

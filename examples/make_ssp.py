@@ -1,4 +1,4 @@
-"""Command line of cnc_motion_sim.ssp (the package in python/, installed in .venv by `make venv`):
+"""Command line of cnc_motion_sim.ssp (the package in python/; `make ssp` writes examples/cosim.ssp):
 `python examples/make_ssp.py --help`."""
 from cnc_motion_sim.ssp import main
 

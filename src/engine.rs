@@ -16,8 +16,10 @@ use std::collections::VecDeque;
 /// Version of the serialized engine state (fmi2 FMU state); bump on any layout change.
 // 3: reader NC state (tools, offsets, compensation, parameters); 4: O-word flow, G93, inch setup;
 // 5: override and hold in the plan stage; 6: the smooth mode's held sub-tolerance moves;
-// 7: speed bands on path blocks and the banded S-curve profile.
-const STATE_VERSION: u32 = 7;
+// 7: reader: motion modes G5…, `%`, splines, work rotations, queued blocks kept, cycle words;
+// 8: seed 004's transition in time (no arc-length table), chains' source-line marks;
+// 9: speed bands on path blocks and the banded S-curve profile.
+const STATE_VERSION: u32 = 9;
 /// Blocks read at most per tick for the read-ahead, and the planned segments it aims to hold.
 const READ_AHEAD_PER_TICK: usize = 1;
 const QUEUE_TARGET: usize = 8;
@@ -117,6 +119,12 @@ impl Engine {
     /// The latest interpolator output (held between ticks).
     pub fn tick(&self) -> &Tick {
         &self.tick
+    }
+
+    /// Bytes of the program the reader has read (ahead of the motion by the look-ahead; an
+    /// O-word loop takes it back): progress through a program file.
+    pub fn program_offset(&self) -> usize {
+        self.reader.offset()
     }
 
     /// Motion blocks (G0/G1/G2/G3) read so far.

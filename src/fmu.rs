@@ -11,8 +11,8 @@ use std::sync::{Arc, OnceLock};
 /// The default program shipped in the FMU's resources (and used by `make demo`).
 pub const DEFAULT_PROGRAM: &str = include_str!("../resources/default.ngc");
 
-/// Version of the serialized model state (see `serialize`).
-const STATE_VERSION: u32 = 2;
+/// Version of the serialized model state (see `serialize`); 3: `machineFile`.
+const STATE_VERSION: u32 = 3;
 
 /// The model as the FMI layer sees it.
 #[derive(Clone, Debug)]

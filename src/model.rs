@@ -3,17 +3,18 @@
 //! axis; get and set are one match over the slots. crates/fmi2 expands the table per axis and
 //! generates the XML, the units and the documentation from it.
 
+use crate::config::ranges;
 use crate::config::{CornerMode, Machine};
 use crate::engine::Engine;
 use crate::feed::ProfileKind;
-use crate::servo::PARAMETERS as SERVO;
+use crate::servo::{Kind, PARAMETERS as SERVO};
 use fmi2::table::Entry;
 use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
 use fmi2::Type::{Boolean as BOOL, Enumeration as ENUM, Integer as INT, Real as REAL, String as STR};
 use fmi2::Variability::{Continuous as CONT, Discrete as TICK, Fixed as FIX};
 use fmi2::{enum_item, enum_value, EnumerationType, Type, Value, VariableInfo};
 use serde::{Deserialize, Serialize};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 pub const MODEL_NAME: &str = "CncMotion";
@@ -31,6 +32,7 @@ pub fn enumerations() -> Vec<EnumerationType> {
 pub enum Slot {
     Program,
     ProgramFile,
+    MachineFile,
     /// Index into [`MACHINE`].
     Machine(usize),
     Lookahead,
@@ -57,27 +59,24 @@ pub enum Slot {
     ContourError,
 }
 
-/// The `machine.*` Reals: read and write their field of [`Machine`] (0 stands for "none" in the
-/// optional limits). Values arrive finite and within the declared min/max (fmi2 checks them).
-type Field = (fn(&Machine) -> f64, fn(&mut Machine, f64));
+/// The `machine.*` Reals: their machine-file key (for the range, config/ranges.rs), and how they
+/// read and write their field of [`Machine`] (0 stands for "none" in the optional limits).
+type Field = (&'static str, fn(&Machine) -> f64, fn(&mut Machine, f64));
 #[rustfmt::skip]
 const MACHINE: [Field; 9] = [
-    (|m| m.interpolation_period, |m, x| m.interpolation_period = x),
-    (|m| m.path_tolerance, |m, x| m.path_tolerance = x),
-    (|m| m.chord_tolerance, |m, x| m.chord_tolerance = x),
-    (|m| m.max_feed, |m, x| m.max_feed = x),
-    (|m| m.max_path_acceleration.unwrap_or(0.0), |m, x| m.max_path_acceleration = (x > 0.0).then_some(x)),
-    (|m| m.max_path_jerk.unwrap_or(0.0), |m, x| m.max_path_jerk = (x > 0.0).then_some(x)),
-    (|m| m.max_snap, |m, x| m.max_snap = x),
-    (|m| m.max_transition_jerk.unwrap_or(0.0), |m, x| m.max_transition_jerk = (x > 0.0).then_some(x)),
-    (|m| m.arc_radius_tolerance, |m, x| m.arc_radius_tolerance = x),
+    ("interpolation_period_s", |m| m.interpolation_period, |m, x| m.interpolation_period = x),
+    ("path_tolerance_mm", |m| m.path_tolerance, |m, x| m.path_tolerance = x),
+    ("chord_tolerance_mm", |m| m.chord_tolerance, |m, x| m.chord_tolerance = x),
+    ("max_feed_mm_min", |m| m.max_feed, |m, x| m.max_feed = x),
+    ("max_path_acceleration_mm_s2", |m| m.max_path_acceleration.unwrap_or(0.0), |m, x| m.max_path_acceleration = (x > 0.0).then_some(x)),
+    ("max_path_jerk_mm_s3", |m| m.max_path_jerk.unwrap_or(0.0), |m, x| m.max_path_jerk = (x > 0.0).then_some(x)),
+    ("max_snap_mm_s4", |m| m.max_snap, |m, x| m.max_snap = x),
+    ("max_transition_jerk_mm_s3", |m| m.max_transition_jerk.unwrap_or(0.0), |m, x| m.max_transition_jerk = (x > 0.0).then_some(x)),
+    ("arc_radius_tolerance_mm", |m| m.arc_radius_tolerance, |m, x| m.arc_radius_tolerance = x),
 ];
 
+/// No range in the table: every declared min/max comes from config/ranges.rs ([`rows`]).
 const NO: Option<f64> = None;
-const ZERO: Option<f64> = Some(0.0);
-/// The Integer twins of the Enumerations range over the same items (0: keep the Enumeration's).
-const PROFILES: Option<f64> = Some(ProfileKind::ALL.len() as f64);
-const CORNERS: Option<f64> = Some(CornerMode::ALL.len() as f64);
 
 /// See [`fmi2::table::Row`]: `#` rows are per axis. Outputs depend on no input (inputs act from
 /// the next step on).
@@ -86,27 +85,28 @@ type Row = fmi2::table::Row<Slot>;
 #[rustfmt::skip]
 pub const ROWS: &[Row] = &[
     ("program",                     STR,     PAR, FIX,  "",     NO,   NO,        Slot::Program,          "G-code program text; empty: read programFile"),
-    ("programFile",                 STR,     PAR, FIX,  "",     NO,   NO,        Slot::ProgramFile,      "G-code file, relative to the FMU's resources"),
-    ("machine.interpolationPeriod", REAL,    PAR, FIX,  "s",    ZERO, NO,        Slot::Machine(0),       "interpolation period T"),
-    ("machine.pathTolerance",       REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(1),       "default G64 path tolerance"),
-    ("machine.chordTolerance",      REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(2),       "chord error on arcs"),
-    ("machine.maxFeed",             REAL,    PAR, FIX,  "m/s",  ZERO, NO,        Slot::Machine(3),       "maximum feed (also G0)"),
-    ("machine.maxPathAcceleration", REAL,    PAR, FIX,  "m/s2", ZERO, NO,        Slot::Machine(4),       "path acceleration limit on top of the axes' (0: none)"),
-    ("machine.maxPathJerk",         REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Machine(5),       "path jerk limit on top of the axes' (0: none)"),
-    ("machine.maxSnap",             REAL,    PAR, FIX,  "m/s4", ZERO, NO,        Slot::Machine(6),       "snap limit (jerk15)"),
-    ("machine.maxTransitionJerk",   REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Machine(7),       "axis jerk in constant-speed corner transitions (polynomial, circular; 0: the axes' own)"),
-    ("machine.arcRadiusTolerance",  REAL,    PAR, FIX,  "m",    ZERO, NO,        Slot::Machine(8),       "arc end point radius mismatch accepted (G20 programs: 2.54 times it), or 0.1 % of the radius"),
-    ("machine.lookaheadBlocks",     INT,     PAR, FIX,  "",     Some(2.0), Some(1e6), Slot::Lookahead,   "look-ahead window (segments)"),
+    ("programFile",                 STR,     PAR, FIX,  "",     NO,   NO,        Slot::ProgramFile,      "G-code file: relative to the FMU's resources, an absolute path or a file: URI"),
+    ("machineFile",                 STR,     PAR, FIX,  "",     NO,   NO,        Slot::MachineFile,      "machine file (TOML, the CLI's --machine): relative to the FMU's resources, an absolute path or a file: URI; empty: none. Parameters not at their start value override its keys"),
+    ("machine.interpolationPeriod", REAL,    PAR, FIX,  "s",    NO,   NO,        Slot::Machine(0),       "interpolation period T"),
+    ("machine.pathTolerance",       REAL,    PAR, FIX,  "m",    NO,   NO,        Slot::Machine(1),       "default G64 path tolerance"),
+    ("machine.chordTolerance",      REAL,    PAR, FIX,  "m",    NO,   NO,        Slot::Machine(2),       "chord error on arcs"),
+    ("machine.maxFeed",             REAL,    PAR, FIX,  "m/s",  NO,   NO,        Slot::Machine(3),       "maximum feed (also G0)"),
+    ("machine.maxPathAcceleration", REAL,    PAR, FIX,  "m/s2", NO,   NO,        Slot::Machine(4),       "path acceleration limit on top of the axes' (0: none)"),
+    ("machine.maxPathJerk",         REAL,    PAR, FIX,  "m/s3", NO,   NO,        Slot::Machine(5),       "path jerk limit on top of the axes' (0: none)"),
+    ("machine.maxSnap",             REAL,    PAR, FIX,  "m/s4", NO,   NO,        Slot::Machine(6),       "snap limit (jerk15)"),
+    ("machine.maxTransitionJerk",   REAL,    PAR, FIX,  "m/s3", NO,   NO,        Slot::Machine(7),       "axis jerk on passage of a curvature discontinuity (seed 004 Table 1: eq. 10 junctions, circular corner arcs; 0: the axes' own)"),
+    ("machine.arcRadiusTolerance",  REAL,    PAR, FIX,  "m",    NO,   NO,        Slot::Machine(8),       "arc end point radius mismatch accepted (G20 programs: 2.54 times it), or 0.1 % of the radius"),
+    ("machine.lookaheadBlocks",     INT,     PAR, FIX,  "",     NO,   NO,        Slot::Lookahead,        "look-ahead window (segments)"),
     ("machine.profile",             ENUM(0), PAR, FIX,  "",     NO,   NO,        Slot::Profile,          "acc/dec law"),
-    ("machine.profileIndex",        INT,     PAR, FIX,  "",     ZERO, PROFILES,  Slot::ProfileIndex,     "acc/dec law as an Integer (importers without Enumerations): 0 keeps machine.profile, 1… its items"),
+    ("machine.profileIndex",        INT,     PAR, FIX,  "",     NO,   NO,        Slot::ProfileIndex,     "acc/dec law as an Integer (importers without Enumerations): 0 keeps machine.profile, 1… its items"),
     ("machine.corner",              ENUM(1), PAR, FIX,  "",     NO,   NO,        Slot::Corner,           "corner passage"),
-    ("machine.cornerIndex",         INT,     PAR, FIX,  "",     ZERO, CORNERS,   Slot::CornerIndex,      "corner passage as an Integer (importers without Enumerations): 0 keeps machine.corner, 1… its items"),
-    ("#.maxVelocity",               REAL,    PAR, FIX,  "m/s",  ZERO, NO,        Slot::Limit(0),         "# axis velocity limit"),
-    ("#.maxAcceleration",           REAL,    PAR, FIX,  "m/s2", ZERO, NO,        Slot::Limit(1),         "# axis acceleration limit"),
-    ("#.maxJerk",                   REAL,    PAR, FIX,  "m/s3", ZERO, NO,        Slot::Limit(2),         "# axis jerk limit"),
+    ("machine.cornerIndex",         INT,     PAR, FIX,  "",     NO,   NO,        Slot::CornerIndex,      "corner passage as an Integer (importers without Enumerations): 0 keeps machine.corner, 1… its items"),
+    ("#.maxVelocity",               REAL,    PAR, FIX,  "m/s",  NO,   NO,        Slot::Limit(0),         "# axis velocity limit"),
+    ("#.maxAcceleration",           REAL,    PAR, FIX,  "m/s2", NO,   NO,        Slot::Limit(1),         "# axis acceleration limit"),
+    ("#.maxJerk",                   REAL,    PAR, FIX,  "m/s3", NO,   NO,        Slot::Limit(2),         "# axis jerk limit"),
     ("#.servo.*",                   REAL,    PAR, FIX,  "",     NO,   NO,        Slot::Servo(0),         "# drive: "),
     ("servo.enabled",               BOOL,    PAR, FIX,  "",     NO,   NO,        Slot::ServoEnabled,     "simulate the drives (off: actual = command)"),
-    ("feedOverride",                REAL,    IN,  CONT, "1",    ZERO, Some(2.0), Slot::FeedOverride,     "feed override factor (jerk-limited)"),
+    ("feedOverride",                REAL,    IN,  CONT, "1",    NO,   NO,        Slot::FeedOverride,     "feed override factor (jerk-limited)"),
     ("feedHold",                    BOOL,    IN,  TICK, "",     NO,   NO,        Slot::FeedHold,         "feed hold: stop on the path within the limits; release resumes"),
     ("#.loadForce",                 REAL,    IN,  CONT, "N",    NO,   NO,        Slot::LoadForce,        "external force on the # table (from a structure model)"),
     ("#.command.position",          REAL,    OUT, TICK, "m",    NO,   NO,        Slot::Command(0),       "# commanded position"),
@@ -127,25 +127,25 @@ pub const ROWS: &[Row] = &[
     ("path.contourError",           REAL,    OUT, CONT, "m",    NO,   NO,        Slot::ContourError,     "distance of the actual tool point from the programmed path"),
 ];
 
-/// FMI type of a servo parameter: counts are Integers, the feedback switch a Boolean.
-fn servo_type(fmi_name: &str) -> Type {
-    match fmi_name {
-        "encoderCounts" => INT,
-        "linearScale" => BOOL,
-        _ => REAL,
+/// FMI type of a drive parameter, from its kind in the servo table.
+fn servo_type(kind: Kind) -> Type {
+    match kind {
+        Kind::Real => REAL,
+        Kind::Count => INT,
+        Kind::Switch => BOOL,
     }
 }
 
 /// The table expanded (value references 1…n in this order); the servo row stands for every
-/// drive parameter of its axis, from the servo's own table. Parameters declare the documented
-/// ranges that `Machine::check` enforces (config/ranges.rs).
+/// drive parameter of its axis, from the servo's own table. Every declared min/max comes from
+/// config/ranges.rs (the ranges `Machine::check` enforces; the table itself declares none).
 pub fn rows() -> Vec<Entry<Slot>> {
     let mut rows = fmi2::table::expand(ROWS, &["x", "y", "z"], |row, axis| match row.7 {
         Slot::Servo(_) => SERVO
             .iter()
             .enumerate()
             .map(|(k, p)| {
-                let kind = servo_type(p.fmi_name);
+                let kind = servo_type(p.kind);
                 let name = format!("{axis}.servo.{}", p.fmi_name);
                 let v = VariableInfo::new(name, kind, PAR, FIX, format!("{axis} drive: {}", p.description));
                 (if kind == REAL { v.unit(p.unit) } else { v }, Slot::Servo(k))
@@ -154,7 +154,7 @@ pub fn rows() -> Vec<Entry<Slot>> {
         _ => fmi2::table::one(row, axis),
     });
     for v in rows.iter_mut().map(|e| &mut e.var) {
-        let declared = crate::config::ranges::declared(&v.name);
+        let declared = ranges::declared(&v.name);
         if let (Some((min, max)), Type::Real | Type::Integer) = (declared, v.kind) {
             (v.min, v.max) = (Some(min), Some(max));
         }
@@ -168,6 +168,8 @@ pub fn rows() -> Vec<Entry<Slot>> {
 pub struct CncMotion {
     pub program: String,
     pub program_file: String,
+    /// The machine file ("" for none); its machine becomes `machine` at initialization.
+    pub machine_file: String,
     pub machine: Machine,
     /// `machine.profileIndex`/`machine.cornerIndex`: 0 keeps the Enumeration's choice, 1…n
     /// replace it (for importers that cannot set Enumerations, e.g. libcosim).
@@ -177,7 +179,7 @@ pub struct CncMotion {
     pub feed_override: f64,
     pub feed_hold: bool,
     pub load_force: [f64; 3],
-    /// The FMU's resources folder (for relative `programFile`).
+    /// The FMU's resources folder (for relative `programFile` and `machineFile`).
     #[serde(skip)]
     pub resources: Option<PathBuf>,
     #[serde(skip)]
@@ -189,6 +191,7 @@ impl Default for CncMotion {
         CncMotion {
             program: String::new(),
             program_file: "default.ngc".into(),
+            machine_file: String::new(),
             machine: Machine::default(),
             profile_index: 0,
             corner_index: 0,
@@ -214,14 +217,15 @@ impl CncMotion {
         match slot {
             Slot::Program => Value::String(self.program.clone()),
             Slot::ProgramFile => Value::String(self.program_file.clone()),
-            Slot::Machine(k) => Value::Real(MACHINE[k].0(m)),
+            Slot::MachineFile => Value::String(self.machine_file.clone()),
+            Slot::Machine(k) => Value::Real(MACHINE[k].1(m)),
             Slot::Lookahead => Value::Integer(m.lookahead_blocks as i32),
             Slot::Profile => Value::Integer(enum_value(&ProfileKind::ALL, &m.profile)),
             Slot::ProfileIndex => Value::Integer(self.profile_index),
             Slot::Corner => Value::Integer(enum_value(&CornerMode::ALL, &m.corner)),
             Slot::CornerIndex => Value::Integer(self.corner_index),
             Slot::Limit(k) => Value::Real([a.max_velocity, a.max_acceleration, a.max_jerk][k]),
-            Slot::Servo(k) => Value::of_type(servo_type(SERVO[k].fmi_name), (SERVO[k].get)(&m.servo[i])),
+            Slot::Servo(k) => Value::of_type(servo_type(SERVO[k].kind), (SERVO[k].get)(&m.servo[i])),
             Slot::ServoEnabled => Value::Boolean(self.servo_enabled),
             Slot::FeedOverride => Value::Real(self.feed_override),
             Slot::FeedHold => Value::Boolean(self.feed_hold),
@@ -236,30 +240,41 @@ impl CncMotion {
         }
     }
 
-    /// Write a parameter or input on axis `i`; bad values are refused with the reason (the FMI
-    /// layer has already refused non-finite Reals and values outside the declared min/max).
+    /// Write a parameter or input on axis `i`. Each value's own range is checked here (the FMI
+    /// layer has already refused non-finite Reals and values outside the declared min/max; this
+    /// also refuses the gaps, e.g. 0 < x < min where 0 means "none"); relations between values
+    /// only at initialization, so that parameters can be set in any order.
     pub fn set(&mut self, slot: Slot, i: usize, value: Value) -> Result<(), String> {
         let m = &mut self.machine;
         match (slot, value) {
             (Slot::Program, Value::String(s)) => self.program = s,
             (Slot::ProgramFile, Value::String(s)) => self.program_file = s,
-            (Slot::Machine(k), Value::Real(x)) => MACHINE[k].1(m, x),
+            (Slot::MachineFile, Value::String(s)) => self.machine_file = s,
+            (Slot::Machine(k), Value::Real(x)) => {
+                ranges::row(ranges::MACHINE, MACHINE[k].0)
+                    .map_err(|e| e.message)?
+                    .fmu_check(x)?;
+                MACHINE[k].2(m, x)
+            }
             (Slot::Lookahead, Value::Integer(n)) => m.lookahead_blocks = n as usize,
             (Slot::Profile, Value::Integer(n)) => m.profile = enum_item(&ProfileKind::ALL, n)?,
             (Slot::Corner, Value::Integer(n)) => m.corner = enum_item(&CornerMode::ALL, n)?,
             (Slot::ProfileIndex, Value::Integer(n)) => self.profile_index = n,
             (Slot::CornerIndex, Value::Integer(n)) => self.corner_index = n,
             (Slot::Limit(k), Value::Real(x)) => {
+                ranges::AXIS[k].fmu_check(x)?;
                 let l = &mut m.axes[i];
                 *[&mut l.max_velocity, &mut l.max_acceleration, &mut l.max_jerk][k] = x;
             }
-            (Slot::Servo(k), v) => m.servo[i].set(SERVO[k].fmi_name, v.number()?)?,
+            (Slot::Servo(k), v) => {
+                let x = v.number()?;
+                ranges::check_servo_value(&SERVO[k], x)?;
+                (SERVO[k].set)(&mut m.servo[i], x)
+            }
             (Slot::ServoEnabled, Value::Boolean(b)) => self.servo_enabled = b,
             (Slot::FeedOverride, Value::Real(x)) => self.feed_override = x,
             (Slot::FeedHold, Value::Boolean(b)) => self.feed_hold = b,
-            (Slot::LoadForce, Value::Real(x)) => {
-                self.load_force[i] = crate::config::ranges::check_load_force(x)?
-            }
+            (Slot::LoadForce, Value::Real(x)) => self.load_force[i] = ranges::check_load_force(x)?,
             _ => return Err("cannot be set".into()),
         }
         Ok(())
@@ -274,9 +289,60 @@ impl CncMotion {
         }
     }
 
-    /// Load the program (inline text, or the file, relative to the resources folder) and start
-    /// the engine. Errors come back as `file:line:col: message`.
+    /// Where a file parameter points: a `file:` URI, an absolute path, or a path relative to the
+    /// FMU's resources folder (to the current directory when the importer gave none).
+    pub fn resolve(&self, name: &str) -> Result<PathBuf, String> {
+        if name.starts_with("file:") {
+            return fmi2::uri::file_uri_to_path(name).map_err(|e| format!("{name}: {e}"));
+        }
+        Ok(self.resources.clone().unwrap_or_default().join(Path::new(name)))
+    }
+
+    /// The parameters that make the machine, on each axis: every one `set` writes into it.
+    fn machine_slots() -> impl Iterator<Item = (Slot, usize)> {
+        let top = (0..MACHINE.len()).map(Slot::Machine);
+        let top = top.chain([Slot::Lookahead, Slot::Profile, Slot::Corner]);
+        let per_axis = (0..3).map(Slot::Limit).chain((0..SERVO.len()).map(Slot::Servo));
+        let per_axis: Vec<Slot> = per_axis.collect();
+        top.map(|s| (s, 0))
+            .chain((0..3).flat_map(move |i| per_axis.clone().into_iter().map(move |s| (s, i))))
+    }
+
+    /// The machine of `machineFile` with every machine parameter whose value differs from its
+    /// declared start value written over it. Importers write every start value, in any order:
+    /// a parameter left at its start value keeps the file's value.
+    fn over_file(&self, file: Machine) -> Result<Machine, String> {
+        let start = CncMotion::default();
+        let mut merged = CncMotion {
+            machine: file,
+            ..CncMotion::default()
+        };
+        for (slot, i) in Self::machine_slots() {
+            let value = self.get(slot, i);
+            if value != start.get(slot, i) {
+                merged.set(slot, i, value)?;
+            }
+        }
+        Ok(merged.machine)
+    }
+
+    /// The machine file read by the CLI's loader (`Machine::from_toml`: every section; errors as
+    /// `file:line:col: message`), with the parameters over it.
+    fn read_machine_file(&self) -> Result<Machine, String> {
+        let name = &self.machine_file;
+        let path = self.resolve(name)?;
+        let text = std::fs::read_to_string(&path).map_err(|e| format!("{name}: {e}"))?;
+        let file = Machine::from_toml(&text, name).map_err(|e| e.to_string())?;
+        self.over_file(file)
+    }
+
+    /// Read the machine file (if any) under the parameters, check the machine (ranges and the
+    /// relations between values), load the program (inline text, or `programFile`) and start the
+    /// engine. Errors come back as `file:line:col: message`.
     pub fn initialize(&mut self) -> Result<(), String> {
+        if !self.machine_file.trim().is_empty() {
+            self.machine = self.read_machine_file()?;
+        }
         if self.profile_index != 0 {
             self.machine.profile = enum_item(&ProfileKind::ALL, self.profile_index)?;
         }
@@ -285,8 +351,8 @@ impl CncMotion {
         }
         self.machine.check()?;
         let text = if self.program.trim().is_empty() {
-            let dir = self.resources.clone().unwrap_or_default();
-            crate::gcode::source::read_program_file(&dir.join(&self.program_file), &self.program_file)?
+            let path = self.resolve(&self.program_file)?;
+            crate::gcode::source::read_program_file(&path, &self.program_file)?
         } else {
             self.program.clone()
         };

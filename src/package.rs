@@ -1,29 +1,26 @@
-//! `cnc-motion package`: CncMotion.fmu from the built shared library, the generated
-//! modelDescription.xml, the default program and an HTML page describing the variables.
+//! `cnc-motion package`: CncMotion.fmu from the built shared libraries (linux64, and win64
+//! cross-compiled), the generated modelDescription.xml, the default program, an HTML page
+//! describing the variables, the reference result of the default experiment and the sources.
 
 use crate::fmu::{model_description, CncMotionFmu, DEFAULT_PROGRAM};
 use fmi2::package::{manifest, sources_readme, tree, write_fmu as write_archive, Entry, FmuFiles};
 use fmi2::Model;
 use std::path::{Path, PathBuf};
 
-/// The cdylib built beside the running executable (target/<profile>/libcnc_motion.so).
-fn shared_library() -> Result<PathBuf, String> {
+/// The profile folder (target/<profile>) of the running executable; test and example binaries
+/// live one level deeper (target/<profile>/deps, …/examples).
+fn profile_dir() -> Result<PathBuf, String> {
     let exe = std::env::current_exe().map_err(|e| format!("current executable: {e}"))?;
-    let mut dir = exe.parent().map(Path::to_path_buf).unwrap_or_default();
-    // Test and example binaries live one level deeper (target/<profile>/deps, …/examples).
-    for _ in 0..2 {
-        let lib = dir.join("libcnc_motion.so");
-        if lib.exists() {
-            return Ok(lib);
-        }
-        if !dir.pop() {
-            break;
-        }
-    }
-    Err(format!(
-        "libcnc_motion.so not found beside {} (build the library: cargo build --release)",
-        exe.display()
-    ))
+    let dir = exe.parent().map(Path::to_path_buf).unwrap_or_default();
+    let deeper = matches!(
+        dir.file_name().and_then(|n| n.to_str()),
+        Some("deps" | "examples")
+    );
+    Ok(if deeper {
+        dir.parent().map(Path::to_path_buf).unwrap_or(dir)
+    } else {
+        dir
+    })
 }
 
 /// documentation/index.html: what the FMU does and an example, then the variables (fmi2).
@@ -41,7 +38,11 @@ pub fn documentation() -> String {
          <code>feedOverride</code> (0…2), <code>feedHold</code>, <code>x.loadForce</code>/<code>y.</code>/\
          <code>z.</code> from a structure model; no output depends directly on an input. A bad program \
          makes fmi2ExitInitializationMode return fmi2Error with <code>file:line:col: message</code> in the \
-         log. The Rust sources of the binary are in <code>sources/</code>.</p>\
+         log. <code>machineFile</code> reads the machine file of the command line (tools, work offsets, \
+         homes, switches, units, axes, drives); parameters set to other values than their start values \
+         override its keys. Binaries: linux64 and win64 (Windows 10 or later). The reference result \
+         of the default experiment is in <code>extra/org.fmi-standard.fmi-ls-ref/</code>; the Rust \
+         sources of the binaries, with how to build them, in <code>sources/</code>.</p>\
          <h2>Example (fmpy)</h2><pre>from fmpy import simulate_fmu\n\
          res = simulate_fmu('CncMotion.fmu', stop_time={}, output_interval=0.001,\n    \
          start_values={{'program': 'G21 G90 G1 X10 Y5 F3000\\nM30\\n', 'machine.profile': 1}})\n\
@@ -73,25 +74,39 @@ pub fn sources() -> Result<Vec<Entry>, String> {
             "crates/fmi2/Cargo.toml".to_string(),
             read("crates/fmi2/Cargo.toml")?.into_bytes(),
         ),
-        sources_readme("CncMotion", "cnc_motion"),
+        sources_readme(
+            "CncMotion",
+            "cnc-motion",
+            "cnc_motion",
+            env!("CARGO_PKG_RUST_VERSION"),
+        ),
     ];
     files.extend(tree(&root.join("src"), "src")?);
     files.extend(tree(&root.join("crates/fmi2/src"), "crates/fmi2/src")?);
     Ok(files)
 }
 
-pub fn write_fmu(path: &Path) -> Result<(), String> {
-    let lib = shared_library()?;
+/// Reference result: the default experiment at its 1 ms step, a row every 10 ms.
+const REFERENCE_EVERY: usize = 10;
+
+/// Write the FMU with the binaries of `platforms` (`linux64,win64`).
+pub fn write_fmu(path: &Path, platforms: &str) -> Result<(), String> {
+    let platforms = fmi2::package::platforms(platforms)?;
+    let binaries = fmi2::package::built_libraries(&profile_dir()?, "cnc_motion", &platforms)?;
     let xml = model_description();
     let doc = documentation();
+    let resources = Path::new(env!("CARGO_MANIFEST_DIR")).join("resources");
+    let extra = fmi2::reference::files::<CncMotionFmu>(Some(&resources), REFERENCE_EVERY)
+        .map_err(|e| format!("reference result: {e}"))?;
     write_archive(
         path,
         &FmuFiles {
             model_identifier: &CncMotionFmu::info().model_identifier,
             model_description: &xml,
-            shared_library: &lib,
+            binaries,
             resources: vec![("default.ngc".into(), DEFAULT_PROGRAM.as_bytes().to_vec())],
             documentation_html: &doc,
+            extra,
             sources: sources()?,
         },
     )

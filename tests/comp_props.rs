@@ -1,9 +1,11 @@
 //! The path stage's properties on cutter-compensated paths (issue 14): random star-shaped
 //! contours (convex and concave corners, lines and arcs bulging either way) cut with G41 or
 //! G42 (LinuxCNC "G41, G42") and G450 / G451 corners, run through the whole engine in the
-//! default (smooth) mode. Checked from the emitted ticks, as an outsider would:
+//! default (smooth) mode and in seed 004's (polynomial). Checked from the emitted ticks, as an
+//! outsider would:
 //! - finite differences from rest (velocity, acceleration, jerk) within the axis limits;
-//! - every tick within the path tolerance of the tool-centre geometry the reader emits;
+//! - every tick within the path tolerance of the tool-centre geometry the reader emits (in the
+//!   polynomial mode the tolerance binds each axis, eq. 29–30: √3 of it in space);
 //! - with G450, every tick away from the entry and exit moves at the tool radius ± the
 //!   tolerance from the programmed contour (the tool-centre path of a correct compensation is
 //!   at exactly the radius from the contour, and distance is 1-Lipschitz) — independent of the
@@ -11,7 +13,7 @@
 //! - the programmed end point of the G40 move, exactly.
 #![allow(unused_crate_dependencies)]
 
-use cnc_motion::config::{Machine, MM};
+use cnc_motion::config::{CornerMode, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::gcode::{Motion, Plane, Reader};
 use cnc_motion::interp::Differences;
@@ -164,12 +166,20 @@ fn nearest(geo: &[Source], p: [f64; 3]) -> f64 {
     geo.iter().map(|g| g.distance(p)).fold(f64::INFINITY, f64::min)
 }
 
-fn check(case: &Case, radius: f64, g451: bool) -> Result<(), TestCaseError> {
-    let m = Machine::default();
+fn check(case: &Case, radius: f64, g451: bool, corner: CornerMode) -> Result<(), TestCaseError> {
+    let m = Machine {
+        corner,
+        ..Machine::default()
+    };
     let Some((path, ends)) = tool_centre(case, &m) else {
         return Err(TestCaseError::reject("the reader refuses the contour (gouge)"));
     };
-    let tol = m.path_tolerance * (1.0 + 1e-6) + 1e-12;
+    let per_axis = if corner == CornerMode::Polynomial {
+        3f64.sqrt()
+    } else {
+        1.0
+    };
+    let tol = per_axis * m.path_tolerance * (1.0 + 1e-6) + 1e-12;
     let r = radius * MM;
     // A contour that comes back within the radius of itself (two non-adjacent elements) is
     // gouged by the exact tool-centre path already: the reader checks local gouges only, as
@@ -237,6 +247,21 @@ proptest! {
     ) {
         let radius = round4(radius);
         let c = case(&edges, left, radius, g451);
-        check(&c, radius, g451)?;
+        check(&c, radius, g451, CornerMode::Smooth)?;
+    }
+
+    /// Seed 004's mode: quintic corners at one speed, eq. 10 where the corner arcs of G450 meet
+    /// the lines tangentially (the step of the centripetal acceleration shares the axis jerk with
+    /// the blocks on both sides, corner::step_jerk).
+    #[test]
+    fn compensated_contours_keep_the_limits_in_the_seed004_mode(
+        edges in prop::collection::vec(an_edge(), 3..9),
+        left in any::<bool>(),
+        radius in 0.5..4.0f64,
+        g451 in any::<bool>(),
+    ) {
+        let radius = round4(radius);
+        let c = case(&edges, left, radius, g451);
+        check(&c, radius, g451, CornerMode::Polynomial)?;
     }
 }

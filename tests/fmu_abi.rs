@@ -202,7 +202,8 @@ fn extreme_parameters_are_refused_through_the_c_abi() {
     let vr = fmu.vr("x.loadForce");
     assert_eq!(unsafe { set(c, &vr, 1, &1e308) }, ERROR);
     assert!(
-        fmu.last_log().contains("loadForce = 1e308 N out of range"),
+        fmu.last_log()
+            .contains("'x.loadForce' = 1e308 out of range (-10000000 … 10000000)"),
         "{}",
         fmu.last_log()
     );

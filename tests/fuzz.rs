@@ -1,5 +1,6 @@
 //! Fuzz harness (issue 11): mutates the corpus programs (corpus/*.ngc,
-//! resources/default.ngc) and machine files, runs each case through the library with a bounded
+//! resources/default.ngc), programs with issue 20's words (G10 L2 R, polar, G5.x, `%`, L
+//! repeats, group-0 codes with motion) and machine files, runs each case through the library with a bounded
 //! number of ticks, and sorts the outcome:
 //!
 //! - `finished`: the programmed end reached exactly, every tick finite, no jump, axis velocity and
@@ -67,6 +68,9 @@ fn corpus() -> Vec<(String, String)> {
         "seed003_pocket_g41.ngc".to_string(),
         include_str!("../examples/seed003_pocket_g41.ngc").to_string(),
     ));
+    for (name, text) in LINUXCNC {
+        out.push((name.to_string(), text.to_string()));
+    }
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/corpus");
     let mut paths: Vec<_> = std::fs::read_dir(dir)
         .expect("corpus beside the clone")
@@ -82,6 +86,36 @@ fn corpus() -> Vec<(String, String)> {
     out
 }
 
+/// Issue 20: programs with the words the reader runs as LinuxCNC does — G10 L2/L20 with R,
+/// polar `@` `^` (also in a cycle), G5 / G5.1 / G5.2…G5.3, `%` demarcation, canned-cycle L
+/// repeats in G90 and G91, group-0 codes (G4, G92, G53) with motion — mutated like the corpus.
+const LINUXCNC: [(&str, &str); 5] = [
+    (
+        "rotation.ngc",
+        "G21 G90 G17 F1500\nG10 L2 P1 X10 Y5 R30\nG54 G1 X5 Y0\nG3 X0 Y5 I-5 J0\nG91 G1 X2 Y1\n\
+         G90 G0 X0 Y0\nG10 L20 P1 X1 Y1\nG1 X3 Y2\nG92 X0 Y0\nG1 X1 Y-1\nG92.1\n\
+         G10 L2 P1 X0 Y0 R0\nG53 G0 X0 Y0\nM2\n",
+    ),
+    (
+        "polar.ngc",
+        "G21 F1200\nG1 @5 ^30\nG91 ^45\n@1 ^45\nG90 G0 @2 ^0\nG0 Z5\nG81 @4 ^90 Z-1 R1 F300\nG80\nM2\n",
+    ),
+    (
+        "splines.ngc",
+        "G21 G17 G64 P0.01 F2000\nG0 X0 Y0\nG5 I0 J3 P0 Q-3 X1 Y1\nG5 P0 Q-3 X2 Y2\nG5.1 X4 Y2 I1 J2\n\
+         G5.2 P1 L3\nX5 Y3 P1\nX6 Y1 P2\nX7 Y2 P1\nG5.3\nG0 X0 Y0\nM2\n",
+    ),
+    (
+        "percent.ngc",
+        "%\nG21 F1000\nG1 X2 Y1 G4 P0.05\nG1 X3 M1\nG4 P0.01 G0 X1\n%\nG1 X50\n",
+    ),
+    (
+        "repeats.ngc",
+        "G21 G0 Z5\nG81 X5 Y0 Z-1 R1 L2 F600\nG91 G81 X2 Y1 Z-1 R-3 L3\nG90 G80\nG0 Z5\n\
+         G83 X1 Y1 Z-2 R1 Q0.5 L2\nG80\nG1 X1 Y1 F900 G4 P0.1\nM2\n",
+    ),
+];
+
 const EXTREME: [&str; 12] = [
     "1e400",
     "-1e400",
@@ -96,8 +130,30 @@ const EXTREME: [&str; 12] = [
     "-3.5",
     "0.0001",
 ];
-const NOISE: [&str; 14] = [
-    "G", "X", "Y", "(", ")", "#", "[", ";", "%", " ", "\n", "G64 Q-1", "\u{feff}", "F",
+const NOISE: [&str; 23] = [
+    "G",
+    "X",
+    "Y",
+    "(",
+    ")",
+    "#",
+    "[",
+    ";",
+    "%",
+    " ",
+    "\n",
+    "G64 Q-1",
+    "\u{feff}",
+    "F",
+    "@",
+    "^",
+    "G5.2 ",
+    "G5.3\n",
+    "L3 ",
+    "G4 P0.1 ",
+    "R90 ",
+    "G10 L2 P1 R45\n",
+    "%\n",
 ];
 
 /// Start and end of every number in `text`.

@@ -117,7 +117,7 @@ fn refusals_name_the_place() {
         ),
         (
             "G42 X2\n",
-            "t.ngc:1:5: axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
+            "t.ngc:1:5: axis words without a motion mode (G0, G1, G2, G3, G5, G5.1, G5.2, G73, G81…G83)",
         ),
         (
             "G1 F100\nG33 Z-1 K1\n",
@@ -127,7 +127,10 @@ fn refusals_name_the_place() {
             "G10 L5 P1 X0\n",
             "t.ngc:1:5: unsupported G10 L5 (L1, L2, L10, L20 are)",
         ),
-        ("G5 X1 Y1 I1 J0 P1 Q1\n", "t.ngc:1:1: unsupported G5 (splines)"),
+        (
+            "G5 X1 Y1 I1 J0 F100\n",
+            "t.ngc:1:1: G5 needs both P and Q (the end's control offset)",
+        ),
         ("G95 G1 X1 F1\n", "t.ngc:1:1: unsupported G95 (feed per revolution)"),
         (
             "O100 sub\n",
@@ -144,7 +147,7 @@ fn refusals_name_the_place() {
         ("G1 X1\n", "t.ngc:1:1: G1 with no feed rate: F was never set"),
         (
             "X1\n",
-            "t.ngc:1:1: axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)",
+            "t.ngc:1:1: axis words without a motion mode (G0, G1, G2, G3, G5, G5.1, G5.2, G73, G81…G83)",
         ),
         (
             "G0 G1 X1\n",

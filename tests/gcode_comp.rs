@@ -174,7 +174,7 @@ fn gouges_are_located_errors() {
     .unwrap_err();
     assert_eq!(
         e,
-        "t.ngc:3:1: arc radius 3.0000 mm is smaller than the tool radius 5.0000 mm on this side (gouge)"
+        "t.ngc:3:1: arc radius 3.0000 mm is smaller than the tool radius 5.0000 mm on the tool's side: the tool cannot follow it (gouge)"
     );
     // A 4 mm slot for a 10 mm tool: the offset edges of the right end do not meet.
     let e = run(

@@ -105,7 +105,7 @@ fn cycle_errors_are_located() {
     assert_eq!(e("G83 X1 Z-1 R1 F100\n"), "t.ngc:1:1: G83 needs Q (peck depth)");
     assert_eq!(
         e("G18 G81 X1 Z-1 R1 F100\n"),
-        "t.ngc:1:5: G81: drilling cycles run in G17 G90 only"
+        "t.ngc:1:5: G81: drilling cycles run in G17 only"
     );
     assert_eq!(
         e("G81 X1 Z2 R1 F100\n"),

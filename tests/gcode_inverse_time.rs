@@ -102,7 +102,7 @@ fn inverse_time_errors() {
         error("G1 X1 F100\nG93 G1 X2 F1\nG94 G1 X3\n"),
         "t.ngc:3:5: G1 with no feed rate: F was never set"
     );
-    assert!(error("G93 G1 X1 F0\n").starts_with("t.ngc:1:11: inverse-time F0 out of range"));
+    assert!(error("G93 G1 X1 F0\n").starts_with("t.ngc:1:11: inverse-time F0 must be positive"));
     assert_eq!(
         error("G93 G81 X1 Y1 Z-1 R1 F1\n"),
         "t.ngc:1:5: G81: drilling cycles are not defined in G93 (inverse time); use G94"

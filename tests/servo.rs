@@ -291,7 +291,8 @@ fn machine_file_servo_keys() {
     assert!(key == "kv" && message.starts_with("unknown servo key `kv`"));
     // Ranges are checked with the whole machine (config::ranges), located at the value.
     let neg: toml::Table = toml::from_str("table_mass_kg = -1").unwrap();
-    assert!(ServoParams::from_table(&neg).unwrap().check().is_err());
+    let s = ServoParams::from_table(&neg).unwrap();
+    assert!(cnc_motion::config::ranges::check_servo("", "", &s).is_err());
     let e = cnc_motion::config::Machine::from_toml(
         "[servo.x]
 table_mass_kg = -1

@@ -11,8 +11,11 @@ the start of the step, then the connections are applied), the two-way force coup
     structure.{x,y,z}.loadForce → cnc.{x,y,z}.loadForce,
 and connector values that start at 0 (the frame is at rest, the drives hold still).
 
-    python examples/cosim.py (or python -m cnc_motion_sim.cosim) [--master slaves|fmpy-ssp|libcosim|ecos] [--stop-time S] [--program FILE.ngc]
-                             [--profile scurve7] [--out out/]
+    python -m cnc_motion_sim.cosim (or examples/cosim.py) [--master slaves|fmpy-ssp|libcosim|ecos] [--stop-time S]
+                             [--program FILE.ngc] [--profile scurve7] [--ssp FILE.ssp] [--out out/]
+
+The FMUs are those shipped in this package; the SSP masters run an SSP of them made on the fly (or
+--ssp). libcosim and Ecos come with the `cosim` extra, the plot with the `plot` extra.
 
 Results: dict name → numpy array, names as "cnc.x.command.position", "structure.x.deflection",
 and "time" = the communication point at the END of each step.
@@ -28,8 +31,8 @@ from typing import Any
 import numpy as np
 
 from .fmu import AXES, Slave, Unpacked
-from .paths import CNC_FMU, SSP, STRUCTURE_FMU
-from .ssp import CNC_RECORDED, STRUCTURE_RECORDED, Connection, connections
+from .paths import CNC_FMU, STRUCTURE_FMU, PathLike
+from .ssp import CNC_RECORDED, STRUCTURE_RECORDED, Connection, connections, default_ssp
 
 Result = dict[str, Any]
 
@@ -124,7 +127,7 @@ def _flat_index(readers: Mapping[str, tuple[list[str], Any]], record: Sequence[s
     raise KeyError(record[i])
 
 
-def cosim_fmpy_ssp(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: float = H,
+def cosim_fmpy_ssp(ssp: PathLike | None = None, stop_time: float = 2.0, h: float = H,
                    parameters: Mapping[str, Any] | None = None) -> Result:
     """fmpy.ssp.simulate_ssp. Its rows are stamped with the START of each step; we restamp with the end.
     fmpy.ssp ignores the SSD's parameter bindings: give them again as `parameters`
@@ -132,6 +135,7 @@ def cosim_fmpy_ssp(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: flo
     from types import SimpleNamespace
 
     from fmpy.ssp.simulation import simulate_ssp
+    ssp = ssp if ssp is not None else default_ssp()
     pset = None
     if parameters:
         pset = SimpleNamespace(parameters=[SimpleNamespace(name=k, value=v) for k, v in parameters.items()])
@@ -142,7 +146,7 @@ def cosim_fmpy_ssp(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: flo
     return res
 
 
-def cosim_libcosim(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: float = H) -> Result:
+def cosim_libcosim(ssp: PathLike | None = None, stop_time: float = 2.0, h: float = H) -> Result:
     """libcosim 0.x through libcosimpy: SSP loaded by libcosim, fixed-step (Jacobi) algorithm, time in ns."""
     from libcosimpy.CosimEnums import CosimVariableType
     from libcosimpy.CosimExecution import CosimExecution
@@ -152,7 +156,7 @@ def cosim_libcosim(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: flo
     log_output_level(CosimLogLevel.WARNING)
 
     h_ns = int(round(h * 1e9))
-    ex = CosimExecution.from_ssp_file(str(ssp), step_size=h_ns)
+    ex = CosimExecution.from_ssp_file(str(ssp if ssp is not None else default_ssp()), step_size=h_ns)
     obs = CosimObserver.create_last_value()
     ex.add_observer(obs)
     wanted = {"cnc": CNC_RECORDED, "structure": STRUCTURE_RECORDED + [f"{a}.loadForce" for a in AXES]}
@@ -185,7 +189,7 @@ def cosim_libcosim(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: flo
     return res
 
 
-def cosim_ecos(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: float = H,
+def cosim_ecos(ssp: PathLike | None = None, stop_time: float = 2.0, h: float = H,
                parameters: Mapping[str, Any] | None = None) -> Result:
     """Ecos through ecospy: SSP loaded by Ecos, fixed step, time summed in floating point (t += h, so
     the communication points drift by ulps, e.g. 1.4999999999999456 after 1500 steps; h itself is
@@ -199,7 +203,7 @@ def cosim_ecos(ssp: str | pathlib.Path = SSP, stop_time: float = 2.0, h: float =
 
     wanted = {"cnc": CNC_RECORDED + [f"{a}.driveForce" for a in AXES],
               "structure": STRUCTURE_RECORDED + [f"{a}.loadForce" for a in AXES]}
-    sim = EcosSimulation(ssp_path=str(ssp), step_size=h)
+    sim = EcosSimulation(ssp_path=str(ssp if ssp is not None else default_ssp()), step_size=h)
     getters: list[tuple[str, Callable[[], float]]] = []
 
     def reader(read: Callable[[str], Any], ident: str) -> Callable[[], float]:
@@ -268,12 +272,13 @@ def residual_vibration(res: Mapping[str, Any], window: float = 0.2, min_standsti
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     ap.add_argument("--master", choices=["slaves", "fmpy-ssp", "libcosim", "ecos"], default="slaves")
     ap.add_argument("--stop-time", type=float)
     ap.add_argument("--program", help="G-code file (own master only; the SSP runs the FMU's default)")
     ap.add_argument("--profile", default=None, help="machine.profile (own master only)")
     ap.add_argument("--one-way", action="store_true", help="no loadForce back to the axes (own master only)")
+    ap.add_argument("--ssp", help="the SSP for fmpy-ssp, libcosim and ecos (default: made from the shipped FMUs)")
     ap.add_argument("--out", default="out")
     a = ap.parse_args()
     if a.master == "slaves":
@@ -291,11 +296,11 @@ def main() -> None:
             cnc.cleanup()
             st.cleanup()
     elif a.master == "fmpy-ssp":
-        res = cosim_fmpy_ssp(stop_time=a.stop_time or 6.5)
+        res = cosim_fmpy_ssp(a.ssp, stop_time=a.stop_time or 6.5)
     elif a.master == "ecos":
-        res = cosim_ecos(stop_time=a.stop_time or 6.5)
+        res = cosim_ecos(a.ssp, stop_time=a.stop_time or 6.5)
     else:
-        res = cosim_libcosim(stop_time=a.stop_time or 6.5)
+        res = cosim_libcosim(a.ssp, stop_time=a.stop_time or 6.5)
     t = res["time"]
     coupling = "one-way" if a.master == "slaves" and a.one_way else "two-way"
     print(f"master {a.master} ({coupling}): {len(t)} steps of {H * 1e3:g} ms to t = {t[-1]:.3f} s")
@@ -315,15 +320,21 @@ def main() -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(2, 1, sharex=True, figsize=(9, 6))
+    fig, ax = plt.subplots(2, 1, sharex=True, figsize=(10, 6.5), layout="constrained")
     for a_ in AXES:
-        ax[0].plot(t, res[f"cnc.{a_}.driveForce"], label=a_)
-        ax[1].plot(t, res[f"structure.{a_}.deflection"] * 1e6, label=a_)
+        ax[0].plot(t, res[f"cnc.{a_}.driveForce"], lw=1, label=f"{a_.upper()} axis")
+        ax[1].plot(t, res[f"structure.{a_}.deflection"] * 1e6, lw=1, label=f"{a_.upper()} axis")
     ax[0].set_ylabel("drive force (N)")
     ax[1].set_ylabel("frame deflection (µm)")
     ax[1].set_xlabel("time (s)")
-    ax[0].legend()
-    fig.tight_layout()
+    for axis in ax:
+        axis.grid(True, lw=0.3, alpha=0.6)
+        axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
+    program = pathlib.Path(a.program).name if a.program else "the FMU's default program"
+    master = {"slaves": "own master (fmpy FMU2Slave)", "fmpy-ssp": "fmpy.ssp", "libcosim": "libcosim",
+              "ecos": "Ecos"}[a.master]
+    fig.suptitle(f"CncMotion.fmu ({program}) on MachineStructure.fmu: {master}, {coupling} coupling, "
+                 f"h = {H * 1e3:g} ms", fontsize=11)
     fig.savefig(out / f"cosim_{a.master}.png", dpi=110)
     print(f"plot: {out / f'cosim_{a.master}.png'}")
 

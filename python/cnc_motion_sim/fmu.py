@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (
     FMU2Slave,
     fmi2CallbackAllocateMemoryTYPE,
@@ -32,6 +33,15 @@ _libc = ctypes.CDLL(None)
 _libc.calloc.restype = ctypes.c_void_p
 _libc.calloc.argtypes = [ctypes.c_size_t, ctypes.c_size_t]
 _libc.free.argtypes = [ctypes.c_void_p]
+
+
+class FmuError(RuntimeError):
+    """An fmi2 call returned fmi2Error or fmi2Fatal (`status`); the message is what the FMU logged
+    (for a bad program `file:line:col: what is wrong`)."""
+
+    def __init__(self, message: str, status: int) -> None:
+        super().__init__(message)
+        self.status = status
 
 
 class Unpacked:
@@ -137,6 +147,16 @@ class Slave:
             return bool(self.fmu.getBoolean(vr)[0])
         return self.fmu.getString(vr)[0]
 
+    def parameters(self) -> dict[str, Any]:
+        """Every parameter's current value (Enumerations by item name)."""
+        out = {}
+        for n in self.u.names("parameter"):
+            value = self.get(n)
+            if self.u.vars[n].type == "Enumeration":
+                value = next((k for k, i in self.u.items(n).items() if i == value), value)
+            out[n] = value
+        return out
+
     def reader(self, names: Sequence[str]) -> Callable[[], list[float]]:
         """A function returning the current values of `names` (grouped by type, one call each)."""
         groups: dict[str, tuple[list[int], list[int]]] = {}
@@ -159,10 +179,16 @@ class Slave:
 
     # -- life cycle -------------------------------------------------------------------------
     def initialize(self, parameters: Values | None = None, start_time: float = 0.0) -> None:
-        self.fmu.setupExperiment(startTime=start_time)
-        self.set_many(parameters)
-        self.fmu.enterInitializationMode()
-        self.fmu.exitInitializationMode()
+        """Set the parameters and initialize; a refused value or program raises FmuError."""
+        try:
+            self.fmu.setupExperiment(startTime=start_time)
+            self.set_many(parameters)
+            self.fmu.enterInitializationMode()
+            self.fmu.exitInitializationMode()
+        except FMICallException as e:
+            self.failed = True
+            errors = [text for status, _, text in self.log if status >= 3]  # fmi2Error, fmi2Fatal
+            raise FmuError("; ".join(errors) or str(e), e.status) from e
         self.time = start_time
         self.steps = 0
         self.t0 = start_time
@@ -183,9 +209,14 @@ class Slave:
         self.steps += 1
         self.time = self.t0 + self.steps * h
 
+    # Set when initialization failed: the instance is in the error state, where fmi2Terminate is
+    # not allowed (only get, reset and free).
+    failed = False
+
     def free(self) -> None:
         try:
-            self.fmu.terminate()
+            if not self.failed:
+                self.fmu.terminate()
         finally:
             self.fmu.freeInstance()
 
@@ -198,13 +229,21 @@ def cnc_outputs(unpacked: Unpacked) -> list[str]:
 
 def run_cnc(unpacked: Unpacked, parameters: Values | None = None, h: float = 1e-3, t_max: float = 120.0,
             after: float = 0.0, inputs: Callable[[float, Slave], None] | None = None,
-            names: Sequence[str] | None = None) -> dict[str, Any]:
+            names: Sequence[str] | None = None, parameters_out: dict[str, Any] | None = None,
+            machine_file: str | pathlib.Path | None = None) -> dict[str, Any]:
     """Run CncMotion alone until status.finished (plus `after` seconds); returns {name: array}.
 
-    `inputs(t, slave)` may set inputs before each step (feed hold, override)."""
+    `inputs(t, slave)` may set inputs before each step (feed hold, override). `machine_file`: the
+    CLI's machine file (TOML), given to the FMU's `machineFile` as an absolute path; `parameters`
+    that differ from their start values override its keys. `parameters_out` receives the value of
+    every parameter after initialization (the ones in force)."""
     s = Slave(unpacked, "cnc")
+    if machine_file is not None:
+        parameters = {"machineFile": str(pathlib.Path(machine_file).resolve()), **(parameters or {})}
     try:
         s.initialize(parameters)
+        if parameters_out is not None:
+            parameters_out.update(s.parameters())
         names = names or cnc_outputs(unpacked)
         read = s.reader(names)
         i_fin = names.index("status.finished")

@@ -1,20 +1,34 @@
-"""Where the project's files are: the clone (this package is installed editable from its
-`python/` folder), the FMUs `make fmu` writes, the SSP, the default program and the corpus."""
+"""The FMUs this package was built with, shipped inside it as package data (`cnc_motion_sim/fmu/`).
+
+`make fmu` packages both FMUs into `target/fmu/` and copies them here; building the wheel
+(`pip install ./python`) runs `make fmu` first when the copies are missing or older than the
+sources (python/build_support/backend.py). The package knows nothing else of the repository:
+programs and machine files are the caller's."""
 from __future__ import annotations
 
 import os
 import pathlib
+import zipfile
 
-ROOT = pathlib.Path(os.environ.get("CNC_MOTION_ROOT", pathlib.Path(__file__).resolve().parents[2]))
-FMU_DIR = ROOT / "target" / "fmu"
+FMU_DIR = pathlib.Path(__file__).resolve().parent / "fmu"
 CNC_FMU = FMU_DIR / "CncMotion.fmu"
 STRUCTURE_FMU = FMU_DIR / "MachineStructure.fmu"
-SSP = ROOT / "examples" / "cosim.ssp"
-DEFAULT_PROGRAM = ROOT / "resources" / "default.ngc"
-CORPUS = ROOT / "corpus"
-CLI = ROOT / os.environ.get("CARGO_TARGET_DIR", "target") / "release" / "cnc-motion"
+
+PathLike = str | os.PathLike[str]
 
 
-def corpus_programs() -> list[pathlib.Path]:
-    """The G-code programs of the corpus (corpus/README.md says where each comes from)."""
-    return sorted(CORPUS.glob("*.ngc"))
+def fmu_file(path: PathLike | None = None, default: pathlib.Path = CNC_FMU) -> pathlib.Path:
+    """`path`, or the shipped FMU; a clear error when the file is not there."""
+    p = pathlib.Path(path) if path is not None else default
+    if not p.is_file():
+        hint = ("this installation of cnc_motion_sim has no FMU: build it from the repository with "
+                "`make fmu`, then `pip install ./python`" if path is None else "no such file")
+        raise FileNotFoundError(f"{p}: {hint}")
+    return p
+
+
+def default_program(fmu: PathLike | None = None) -> str:
+    """The G-code program the FMU runs when neither `program` nor `programFile` is set (its
+    resources/default.ngc)."""
+    with zipfile.ZipFile(fmu_file(fmu)) as z:
+        return z.read("resources/default.ngc").decode()

@@ -1,6 +1,8 @@
 """Build examples/cosim.ssp: CncMotion.fmu and MachineStructure.fmu with the two-way force coupling.
 
-    python examples/make_ssp.py  (or python -m cnc_motion_sim.ssp) [--cnc target/fmu/CncMotion.fmu] [--structure ...] [--out examples/cosim.ssp]
+    python -m cnc_motion_sim.ssp [--cnc CncMotion.fmu] [--structure MachineStructure.fmu] [--out cosim.ssp]
+
+(the FMUs default to the ones shipped in this package; `make ssp` writes examples/cosim.ssp).
 
 Connections (SSP 1.0, read by fmpy.ssp and libcosim):
     cnc.{x,y,z}.driveForce      → structure.{x,y,z}.driveForce
@@ -13,7 +15,10 @@ fmpy.ssp does not apply bindings and both masters must run the same system.
 from __future__ import annotations
 
 import argparse
+import atexit
 import pathlib
+import shutil
+import tempfile
 import zipfile
 from collections.abc import Mapping
 from typing import Any
@@ -22,7 +27,7 @@ from xml.sax.saxutils import quoteattr
 from fmpy import read_model_description
 
 from .fmu import AXES
-from .paths import CNC_FMU, SSP, STRUCTURE_FMU
+from .paths import CNC_FMU, STRUCTURE_FMU, PathLike, fmu_file
 
 Connection = tuple[str, str, str, str]
 
@@ -122,12 +127,14 @@ def ssd_text(cnc_fmu: pathlib.Path, structure_fmu: pathlib.Path, stop_time: floa
 """
 
 
-def make_ssp(cnc_fmu: str | pathlib.Path = CNC_FMU, structure_fmu: str | pathlib.Path = STRUCTURE_FMU,
-             out: str | pathlib.Path = SSP, stop_time: float = 8.0, structure_params: Mapping[str, Any] | None = None,
+def make_ssp(out: PathLike, cnc_fmu: PathLike | None = None, structure_fmu: PathLike | None = None,
+             stop_time: float = 8.0, structure_params: Mapping[str, Any] | None = None,
              cnc_params: Mapping[str, Any] | None = None) -> pathlib.Path:
-    """`structure_params`, `cnc_params`: {variable: value} bound in the SSP (e.g. {"x.couplingMass": 1.0},
+    """Write the SSP to `out` (the FMUs: the given ones, else those shipped in this package).
+    `structure_params`, `cnc_params`: {variable: value} bound in the SSP (e.g. {"x.couplingMass": 1.0},
     {"machine.profileIndex": 5})."""
-    cnc_path, structure_path, out = pathlib.Path(cnc_fmu), pathlib.Path(structure_fmu), pathlib.Path(out)
+    cnc_path, structure_path = fmu_file(cnc_fmu, CNC_FMU), fmu_file(structure_fmu, STRUCTURE_FMU)
+    out = pathlib.Path(out)
     text = ssd_text(cnc_path, structure_path, stop_time, structure_params, cnc_params)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_suffix(".tmp")
@@ -139,14 +146,27 @@ def make_ssp(cnc_fmu: str | pathlib.Path = CNC_FMU, structure_fmu: str | pathlib
     return out
 
 
+_default: list[pathlib.Path] = []
+
+
+def default_ssp() -> pathlib.Path:
+    """The SSP of the FMUs shipped in this package, written once per process to a temporary
+    folder (removed at exit)."""
+    if not _default:
+        folder = pathlib.Path(tempfile.mkdtemp(prefix="cnc_motion_ssp_"))
+        atexit.register(shutil.rmtree, folder, ignore_errors=True)
+        _default.append(make_ssp(folder / "cosim.ssp"))
+    return _default[0]
+
+
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--cnc", default=str(CNC_FMU))
-    ap.add_argument("--structure", default=str(STRUCTURE_FMU))
-    ap.add_argument("--out", default=str(SSP))
+    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    ap.add_argument("--cnc", help="CncMotion.fmu (default: the one shipped in this package)")
+    ap.add_argument("--structure", help="MachineStructure.fmu (default: the one shipped in this package)")
+    ap.add_argument("--out", default="cosim.ssp")
     ap.add_argument("--stop-time", type=float, default=8.0)
     a = ap.parse_args()
-    print(make_ssp(a.cnc, a.structure, a.out, a.stop_time))
+    print(make_ssp(a.out, a.cnc, a.structure, a.stop_time))
 
 
 if __name__ == "__main__":

@@ -1,14 +1,15 @@
 """Parameter sweep: axis jerk limit × feed profile × program, each case a co-simulation of
 CncMotion.fmu on MachineStructure.fmu, distributed with Dask (as fmpy's parameter-variation example).
 
-    python examples/sweep.py  (or python -m cnc_motion_sim.sweep)
-    python examples/sweep.py                          # LocalCluster (2 workers) on this machine
-    python examples/sweep.py --scheduler tcp://HOST:8786   # a running dask-scheduler (workers need
-                                                           # this repo and the FMUs at the same paths)
-    python examples/sweep.py --jerk 10000 40000 --profile scurve7 trapezoid --program resources/default.ngc
+    python -m cnc_motion_sim.sweep (or examples/sweep.py)   # LocalCluster (2 workers) on this machine
+    python -m cnc_motion_sim.sweep --scheduler tcp://HOST:8786   # a running dask-scheduler (its workers
+                                   # get this package's code uploaded; they need the FMUs at the paths
+                                   # they have here, e.g. the package installed at the same place)
+    python -m cnc_motion_sim.sweep --jerk 10000 40000 --profile scurve7 trapezoid --program part.ngc
 
 Per case: cycle time, peak contour error, peak deflection and residual vibration of the frame.
-Writes out/sweep.csv and prints the table.
+Programs default to the FMU's own default program. Writes OUT/sweep.csv and prints the table.
+Needs the `sweep` extra (dask, distributed).
 """
 from __future__ import annotations
 
@@ -35,15 +36,18 @@ _unpacked: dict[tuple[str, str], tuple[Unpacked, Unpacked]] = {}
 
 
 def simulate_case(case: Case, cnc_fmu: str, structure_fmu: str, two_way: bool = False) -> dict[str, Any]:
-    """One case (program path, profile, jerk limit in mm/s³) → dict of FIELDS. Runs in a Dask worker
-    (absolute FMU paths: a remote worker imports this package from an uploaded zip). One-way coupling
-    by default: the frame is driven by the axes; `two_way` also feeds loadForce back (see README)."""
+    """One case (program path, "" for the FMU's default program; profile; jerk limit in mm/s³) →
+    dict of FIELDS. Runs in a Dask worker (absolute FMU paths: a remote worker imports this package
+    from an uploaded zip). One-way coupling by default: the frame is driven by the axes; `two_way`
+    also feeds loadForce back (see README)."""
     program, profile, jerk = case
     key = (cnc_fmu, structure_fmu)
     if key not in _unpacked:  # unpack once per worker process
         _unpacked[key] = (Unpacked(cnc_fmu), Unpacked(structure_fmu))
     cnc, st = _unpacked[key]
-    params: dict[str, Any] = {"program": pathlib.Path(program).read_text(), "machine.profile": profile}
+    params: dict[str, Any] = {"machine.profile": profile}
+    if program:
+        params["program"] = pathlib.Path(program).read_text()
     for a in AXES:
         params[f"{a}.maxJerk"] = jerk * 1e-3
     res = cosim_slaves(cnc, st, params, record=[
@@ -51,7 +55,7 @@ def simulate_case(case: Case, cnc_fmu: str, structure_fmu: str, two_way: bool = 
         *(f"structure.{a}.deflection" for a in AXES)], after=0.2, two_way=two_way)
     rms, stops = residual_vibration(res)
     defl = np.sqrt(sum(res[f"structure.{a}.deflection"] ** 2 for a in AXES))
-    return {"program": pathlib.Path(program).name, "profile": profile, "jerk_mm_s3": jerk,
+    return {"program": pathlib.Path(program).name if program else "default.ngc", "profile": profile, "jerk_mm_s3": jerk,
             "cycle_time_s": res["t_finished"],
             "max_contour_error_um": float(np.max(np.abs(res["cnc.path.contourError"])) * 1e6),
             "max_deflection_um": float(np.max(defl) * 1e6),
@@ -63,7 +67,8 @@ def cases(programs: Iterable[str | pathlib.Path], kinds: Iterable[str], jerks: I
 
 
 def run_serial(case_list: list[Case], two_way: bool = False) -> list[dict[str, Any]]:
-    return [simulate_case(c, str(paths.CNC_FMU), str(paths.STRUCTURE_FMU), two_way) for c in case_list]
+    cnc, structure = str(paths.fmu_file(None, paths.CNC_FMU)), str(paths.fmu_file(None, paths.STRUCTURE_FMU))
+    return [simulate_case(c, cnc, structure, two_way) for c in case_list]
 
 
 def _package_zip(folder: pathlib.Path) -> pathlib.Path:
@@ -91,8 +96,9 @@ def run_dask(case_list: list[Case], scheduler: str | None = None, n_workers: int
             # uploaded copy here, pointing the package's paths at the scratch folder.)
             with tempfile.TemporaryDirectory() as tmp:
                 client.upload_file(str(_package_zip(pathlib.Path(tmp))))
-        futures = client.map(simulate_case, case_list, cnc_fmu=str(paths.CNC_FMU),
-                             structure_fmu=str(paths.STRUCTURE_FMU), two_way=two_way, pure=False)
+        cnc, structure = str(paths.fmu_file(None, paths.CNC_FMU)), str(paths.fmu_file(None, paths.STRUCTURE_FMU))
+        futures = client.map(simulate_case, case_list, cnc_fmu=cnc, structure_fmu=structure, two_way=two_way,
+                             pure=False)
         return client.gather(futures)
     finally:
         client.close()
@@ -101,15 +107,15 @@ def run_dask(case_list: list[Case], scheduler: str | None = None, n_workers: int
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: LocalCluster)")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--jerk", type=float, nargs="+", default=[10000, 40000, 160000], help="mm/s³")
     kinds = profiles() if paths.CNC_FMU.exists() else None  # the items of machine.profile
     ap.add_argument("--profile", nargs="+", choices=kinds, default=["scurve7", "quintic", "jerk15", "trapezoid"])
-    ap.add_argument("--program", nargs="+", default=[str(paths.DEFAULT_PROGRAM)])
+    ap.add_argument("--program", nargs="+", default=[""], help="G-code files (default: the FMU's own)")
     ap.add_argument("--two-way", action="store_true", help="feed the frame's loadForce back to the axes")
-    ap.add_argument("--out", default=str(paths.ROOT / "out"))
+    ap.add_argument("--out", default="out")
     a = ap.parse_args()
     cl = cases(a.program, a.profile, a.jerk)
     rows = run_dask(cl, a.scheduler, a.workers, a.two_way)

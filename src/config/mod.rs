@@ -110,8 +110,10 @@ pub struct Machine {
     pub max_path_jerk: Option<f64>,
     /// Snap limit of the jerk15 law (m/s⁴).
     pub max_snap: f64,
-    /// Axis jerk allowed while passing a constant-speed corner transition (`polynomial` and
-    /// `circular` modes; seed 004 Table 1: 60 m/s³ on the 840D), m/s³; the axes' own when None.
+    /// Axis jerk on passage of a discontinuity in curvature (seed 004 Table 1: 60 m/s³ on the
+    /// 840D): eq. 10's acceleration step where a line and an arc or two arcs meet tangentially,
+    /// and the `circular` mode's corner arcs; m/s³, the axes' own when None. The `polynomial`
+    /// mode's quintic corners are curvature-continuous and keep the axis jerk (eq. 54).
     pub max_transition_jerk: Option<f64>,
     pub axes: [AxisLimits; 3],
     pub servo: [ServoParams; 3],

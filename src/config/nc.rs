@@ -2,7 +2,7 @@
 //! work offsets G54…G59.3, the G28/G30 home positions and the cutter-compensation corner
 //! strategy. Lengths are read in mm and kept in metres.
 
-use super::ranges::RangeError;
+use super::ranges::{number, significant, RangeError, INCH_MM};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -44,8 +44,10 @@ pub struct NcSetup {
     pub optional_stop: bool,
     pub cutter_corner: CutterCorner,
     pub tools: BTreeMap<u32, Tool>,
-    /// G54 … G59.3 offsets (m), machine = program + offset.
+    /// G54 … G59.3 offsets (m), machine = R·program + offset.
     pub work_offsets: [Vec3; 9],
+    /// G54 … G59.3 rotations R of the XY axes about Z (degrees, G10 L2 R; 0 from the file).
+    pub work_rotation: [f64; 9],
     /// G28 and G30 home positions (m, machine coordinates).
     pub home: [Vec3; 2],
     /// O-word loops: most jumps back (loop passes) in one run of a program.
@@ -85,6 +87,7 @@ impl Default for NcSetup {
             cutter_corner: CutterCorner::Arc,
             tools: BTreeMap::new(),
             work_offsets: [[0.0; 3]; 9],
+            work_rotation: [0.0; 9],
             home: [[0.0; 3]; 2],
             max_loop_iterations: DEFAULT_MAX_LOOP_ITERATIONS,
             inch: false,
@@ -113,17 +116,26 @@ fn range_error(key: String, message: String) -> RangeError {
     RangeError { key, message }
 }
 
-fn length(key: String, v: f64, max: f64, min: f64) -> Result<f64, RangeError> {
+/// A length `v` (mm, converted from inches for an `inch` file) within min … max (m); the
+/// message quotes the value and range in the file's unit.
+fn length(key: String, v: f64, max: f64, min: f64, inch: bool) -> Result<f64, RangeError> {
     let m = v * 1e-3;
     if m.is_finite() && m >= min && m <= max {
         Ok(m)
     } else {
-        let message = format!("{key} = {v} out of range ({} … {} mm)", min * 1e3, max * 1e3);
+        let (f, unit) = if inch { (INCH_MM, "in") } else { (1.0, "mm") };
+        let shown = |x: f64| number(if inch { significant(x / f) } else { x / f });
+        let message = format!(
+            "{key} = {} out of range ({} … {} {unit})",
+            shown(v),
+            shown(min * 1e3),
+            shown(max * 1e3)
+        );
         Err(range_error(key, message))
     }
 }
 
-fn point(prefix: &str, p: &PointFile) -> Result<Vec3, RangeError> {
+fn point(prefix: &str, p: &PointFile, inch: bool) -> Result<Vec3, RangeError> {
     let mut out = [0.0; 3];
     for (i, (v, name)) in [p.x_mm, p.y_mm, p.z_mm]
         .iter()
@@ -131,7 +143,7 @@ fn point(prefix: &str, p: &PointFile) -> Result<Vec3, RangeError> {
         .enumerate()
     {
         if let Some(v) = v {
-            out[i] = length(format!("{prefix}.{name}"), *v, MAX_OFFSET_M, -MAX_OFFSET_M)?;
+            out[i] = length(format!("{prefix}.{name}"), *v, MAX_OFFSET_M, -MAX_OFFSET_M, inch)?;
         }
     }
     Ok(out)
@@ -150,11 +162,12 @@ impl NcSetup {
                     return Err(range_error(key, m));
                 }
             };
+            let inch = self.inch;
             let radius = t.radius_mm.map_or(Ok(0.0), |v| {
-                length(format!("{key}.radius_mm"), v, MAX_TOOL_RADIUS_M, 0.0)
+                length(format!("{key}.radius_mm"), v, MAX_TOOL_RADIUS_M, 0.0, inch)
             })?;
             let length = t.length_mm.map_or(Ok(0.0), |v| {
-                length(format!("{key}.length_mm"), v, MAX_OFFSET_M, -MAX_OFFSET_M)
+                length(format!("{key}.length_mm"), v, MAX_OFFSET_M, -MAX_OFFSET_M, inch)
             })?;
             self.tools.insert(n, Tool { radius, length });
         }
@@ -169,7 +182,7 @@ impl NcSetup {
                 let m = format!("{key}: not a work coordinate system (g54 … g59, g59.1 … g59.3)");
                 return Err(range_error(key, m));
             };
-            self.work_offsets[i] = point(&key, p)?;
+            self.work_offsets[i] = point(&key, p, self.inch)?;
         }
         Ok(())
     }
@@ -183,7 +196,7 @@ impl NcSetup {
                 "g30" => 1,
                 _ => return Err(range_error(key.clone(), format!("{key}: not g28 or g30"))),
             };
-            self.home[i] = point(&key, p)?;
+            self.home[i] = point(&key, p, self.inch)?;
         }
         Ok(())
     }

@@ -1,13 +1,20 @@
-//! The documented physical range of every machine key and FMU parameter, in ONE table, enforced
-//! by `Machine::check` for the CLI (machine file) and the FMU (fmi2ExitInitializationMode), plus
-//! the FMU inputs and outputs. Ranges are wide enough for any real machine and narrow enough that
-//! no value can make a tick, a matrix exponential or an allocation run away.
+//! The documented physical range of every machine key and FMU parameter, ONE source: the tables
+//! below (machine keys, axis keys) and the drive table `servo::PARAMETERS`. The FMU declares its
+//! `min`/`max` from here ([`declared`]), checks each value's own range when it is set
+//! ([`Range::fmu_check`], [`check_servo_value`]) and the relations between values (peak ≥ rated
+//! torque) at fmi2ExitInitializationMode with the whole machine (`Machine::check`), as the CLI
+//! does for a machine file. Ranges are wide enough for any real machine and narrow enough that no
+//! value can make a tick, a matrix exponential or an allocation run away.
 
-use super::Machine;
-use crate::servo::{ServoParams, PARAMETERS};
+use super::{CornerMode, Machine};
+use crate::feed::ProfileKind;
+use crate::servo::{Kind, ServoParameter, ServoParams, PARAMETERS};
 
 /// One row: the machine-file key (with the unit it is written in), the FMU name, the range in
-/// SI and the factor from the file unit to SI. `zero_ok`: exactly 0 is also allowed (off).
+/// SI and the factor from the file unit to SI. `zero_ok`: exactly 0 is also allowed (off);
+/// `none_at_zero`: an optional limit, absent from the file when not wanted, which the FMU
+/// parameter sets to 0 for "none".
+#[derive(Debug)]
 pub struct Range {
     pub key: &'static str,
     pub fmi: &'static str,
@@ -16,6 +23,7 @@ pub struct Range {
     pub factor: f64,
     pub unit: &'static str,
     pub zero_ok: bool,
+    pub none_at_zero: bool,
 }
 
 const fn r(
@@ -34,11 +42,19 @@ const fn r(
         factor,
         unit,
         zero_ok: false,
+        none_at_zero: false,
+    }
+}
+
+/// An optional limit (`none_at_zero`).
+const fn optional(r: Range) -> Range {
+    Range {
+        none_at_zero: true,
+        ..r
     }
 }
 
 use super::{MM, MM_MIN};
-const RPM: f64 = 2.0 * std::f64::consts::PI / 60.0;
 
 /// Machine keys (SI ranges; `factor` converts the file's unit).
 pub const MACHINE: &[Range] = &[
@@ -83,53 +99,32 @@ pub const MACHINE: &[Range] = &[
         MM_MIN,
         "mm/min",
     ),
-    r(
+    optional(r(
         "max_path_acceleration_mm_s2",
         "machine.maxPathAcceleration",
         1e-3,
         1e3,
         MM,
         "mm/s²",
-    ),
-    r(
+    )),
+    optional(r(
         "max_path_jerk_mm_s3",
         "machine.maxPathJerk",
         1e-2,
         1e6,
         MM,
         "mm/s³",
-    ),
+    )),
     r("max_snap_mm_s4", "machine.maxSnap", 1.0, 1e9, MM, "mm/s⁴"),
-    r(
+    optional(r(
         "max_transition_jerk_mm_s3",
         "machine.maxTransitionJerk",
         1e-2,
         1e7,
         MM,
         "mm/s³",
-    ),
+    )),
 ];
-
-/// The declared range (SI) of an FMU parameter by its name (`machine.…`, `x.maxJerk`,
-/// `y.servo.kv`, …), for `min`/`max` in the modelDescription; None if it has no row here.
-/// Parameters where 0 means "none" or "off" are declared from 0.
-pub fn declared(fmi_name: &str) -> Option<(f64, f64)> {
-    let (table, name) = match fmi_name.split_once('.') {
-        Some(("machine", _)) => (MACHINE, fmi_name),
-        Some((_, rest)) => match rest.strip_prefix("servo.") {
-            Some(servo) => (SERVO, servo),
-            None => (AXIS, rest),
-        },
-        None => return None,
-    };
-    let r = table.iter().find(|r| r.fmi == name)?;
-    let zero_means_none = matches!(
-        r.key,
-        "max_path_acceleration_mm_s2" | "max_path_jerk_mm_s3" | "max_transition_jerk_mm_s3"
-    );
-    let min = if r.zero_ok || zero_means_none { 0.0 } else { r.min };
-    Some((min, r.max))
-}
 
 /// Per-axis keys `[axis.x]` (FMU `x.maxVelocity` …).
 pub const AXIS: &[Range] = &[
@@ -150,76 +145,6 @@ pub const AXIS: &[Range] = &[
         "mm/s²",
     ),
     r("max_jerk_mm_s3", "maxJerk", 1e-2, 1e6, MM, "mm/s³"),
-];
-
-/// Drive parameters `[servo.x]` (FMU `x.servo.*`), same order as `servo::PARAMETERS`.
-pub const SERVO: &[Range] = &[
-    r("screw_lead_mm", "screwLead", 1e-5, 0.1, MM, "mm"),
-    r("rotor_inertia_kg_m2", "rotorInertia", 1e-7, 1.0, 1.0, "kg·m²"),
-    r("screw_inertia_kg_m2", "screwInertia", 0.0, 1.0, 1.0, "kg·m²"),
-    r("table_mass_kg", "tableMass", 1e-2, 1e5, 1.0, "kg"),
-    r("axial_stiffness_n_um", "axialStiffness", 1e4, 1e11, 1e6, "N/µm"),
-    r("axial_damping_n_s_m", "axialDamping", 0.0, 1e7, 1.0, "N·s/m"),
-    r(
-        "viscous_friction_n_s_m",
-        "viscousFriction",
-        0.0,
-        1e7,
-        1.0,
-        "N·s/m",
-    ),
-    r("coulomb_friction_n", "coulombFriction", 0.0, 1e5, 1.0, "N"),
-    r(
-        "friction_velocity_mm_s",
-        "frictionVelocity",
-        1e-7,
-        1.0,
-        MM,
-        "mm/s",
-    ),
-    r("rated_torque_n_m", "ratedTorque", 1e-3, 1e4, 1.0, "N·m"),
-    r("peak_torque_n_m", "peakTorque", 1e-3, 1e4, 1.0, "N·m"),
-    r("max_speed_rpm", "maxSpeed", 1.0 * RPM, 1e5 * RPM, RPM, "rpm"),
-    Range {
-        zero_ok: true,
-        ..r("encoder_counts", "encoderCounts", 4.0, 1e9, 1.0, "")
-    },
-    r("kv_1_s", "kv", 0.1, 1e3, 1.0, "1/s"),
-    r(
-        "velocity_gain_n_m_s_rad",
-        "velocityGain",
-        1e-6,
-        1e3,
-        1.0,
-        "N·m·s/rad",
-    ),
-    r(
-        "velocity_integral_time_ms",
-        "velocityIntegralTime",
-        1e-5,
-        10.0,
-        MM,
-        "ms",
-    ),
-    r(
-        "current_time_constant_ms",
-        "currentTimeConstant",
-        1e-6,
-        0.1,
-        MM,
-        "ms",
-    ),
-    r("velocity_feedforward", "velocityFeedforward", 0.0, 1.0, 1.0, ""),
-    r(
-        "acceleration_feedforward",
-        "accelerationFeedforward",
-        0.0,
-        1.0,
-        1.0,
-        "",
-    ),
-    r("linear_scale", "linearScale", 0.0, 1.0, 1.0, "(0 or 1)"),
-    r("servo_rate_hz", "servoRate", 100.0, 1e5, 1.0, "Hz"),
 ];
 
 /// NC setup (`config::nc`): tool numbers `[tool.N]` 1 … MAX_TOOL (LinuxCNC allows pocket
@@ -250,25 +175,97 @@ impl Range {
         (self.zero_ok && si == 0.0) || (si >= self.min && si <= self.max)
     }
 
+    /// The range of a drive parameter, from its row of `servo::PARAMETERS`.
+    pub fn of_servo(p: &ServoParameter) -> Range {
+        Range {
+            key: p.key,
+            fmi: p.fmi_name,
+            min: p.min,
+            max: p.max,
+            factor: p.factor,
+            unit: p.file_unit,
+            zero_ok: p.zero_ok,
+            none_at_zero: false,
+        }
+    }
+
+    /// The lowest value the FMU parameter accepts: 0 where 0 means "off" or "none".
+    pub fn fmu_min(&self) -> f64 {
+        if self.zero_ok || self.none_at_zero {
+            0.0
+        } else {
+            self.min
+        }
+    }
+
+    /// An FMU parameter's own range, checked when it is set (SI, as the FMU declares it).
+    pub fn fmu_check(&self, si: f64) -> Result<(), String> {
+        if self.contains(si) || (self.none_at_zero && si == 0.0) {
+            return Ok(());
+        }
+        let zero = if self.zero_ok || self.none_at_zero {
+            "0 or "
+        } else {
+            ""
+        };
+        Err(format!(
+            "{} out of range ({zero}{} … {})",
+            number(si),
+            number(self.min),
+            number(self.max)
+        ))
+    }
+
     /// `si` (SI) within the range, else the message in the file's unit with the FMU name.
     pub fn check(&self, prefix: &str, fmi_prefix: &str, si: f64) -> Result<(), RangeError> {
+        self.check_in(prefix, fmi_prefix, si, false)
+    }
+
+    /// `check` for a file in `inch` units (`units = "inch"`): a length key's value and range
+    /// are quoted in inches, as the file wrote them.
+    pub fn check_in(&self, prefix: &str, fmi_prefix: &str, si: f64, inch: bool) -> Result<(), RangeError> {
         if self.contains(si) {
             return Ok(());
         }
-        let shown = |x: f64| number(x / self.factor);
+        let inches = inch && self.unit.starts_with("mm");
+        let (factor, unit) = if inches {
+            (self.factor * INCH_MM, self.unit.replacen("mm", "in", 1))
+        } else {
+            (self.factor, self.unit.to_string())
+        };
+        let shown = |x: f64| {
+            let v = x / factor;
+            number(if inches { significant(v) } else { v })
+        };
         let zero = if self.zero_ok { "0 or " } else { "" };
         Err(RangeError {
             key: format!("{prefix}{}", self.key),
             message: format!(
-                "{prefix}{} = {} out of range ({zero}{} … {} {}; FMU {fmi_prefix}{})",
+                "{prefix}{} = {} out of range ({zero}{} … {} {unit}; FMU {fmi_prefix}{})",
                 self.key,
                 shown(si),
                 shown(self.min),
                 shown(self.max),
-                self.unit,
                 self.fmi
             ),
         })
+    }
+}
+
+/// Millimetres per inch.
+pub const INCH_MM: f64 = 25.4;
+
+/// `x` to 12 significant digits: a value converted to SI and back (× 25.4 ÷ 25.4) reads as
+/// written, not 400000.00000000006.
+pub fn significant(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(11 - x.abs().log10().floor() as i32);
+    if scale.is_finite() && (x * scale).is_finite() {
+        (x * scale).round() / scale
+    } else {
+        x
     }
 }
 
@@ -282,11 +279,59 @@ pub fn number(x: f64) -> String {
     }
 }
 
-fn row<'a>(table: &'a [Range], key: &str) -> &'a Range {
-    table.iter().find(|r| r.key == key).unwrap_or(&table[0])
+/// The row of `key` in `table`; a key without a row is an error (a programming error: every
+/// key `check_machine` names is in the tables, which its tests run through).
+pub fn row<'a>(table: &'a [Range], key: &str) -> Result<&'a Range, RangeError> {
+    table.iter().find(|r| r.key == key).ok_or_else(|| RangeError {
+        key: key.to_string(),
+        message: format!("{key}: no documented range (internal error)"),
+    })
 }
 
-/// Every value of the machine within its range (and the few relations between them).
+/// Largest feed override factor (FMU input `feedOverride`, 0 … this).
+pub use crate::plan::MAX_FEED_OVERRIDE;
+
+/// The declared range (SI) of an FMU variable by its name (`machine.…`, `x.maxJerk`,
+/// `y.servo.kv`, `feedOverride`, `z.loadForce`, …), for `min`/`max` in the modelDescription;
+/// None if it has none. Parameters where 0 means "none" or "off" are declared from 0; Booleans
+/// (`linearScale`) declare nothing.
+pub fn declared(fmi_name: &str) -> Option<(f64, f64)> {
+    let enum_index = |n: usize| Some((0.0, n as f64));
+    match fmi_name {
+        "feedOverride" => return Some((0.0, MAX_FEED_OVERRIDE)),
+        "machine.profileIndex" => return enum_index(ProfileKind::ALL.len()),
+        "machine.cornerIndex" => return enum_index(CornerMode::ALL.len()),
+        _ => {}
+    }
+    let (axis_or_machine, rest) = fmi_name.split_once('.')?;
+    if axis_or_machine == "machine" {
+        let r = MACHINE.iter().find(|r| r.fmi == fmi_name)?;
+        return Some((r.fmu_min(), r.max));
+    }
+    if rest == "loadForce" {
+        return Some((-MAX_LOAD_FORCE_N, MAX_LOAD_FORCE_N));
+    }
+    if let Some(servo) = rest.strip_prefix("servo.") {
+        let p = PARAMETERS.iter().find(|p| p.fmi_name == servo)?;
+        let r = Range::of_servo(p);
+        return (p.kind != Kind::Switch).then(|| (r.fmu_min(), r.max));
+    }
+    let r = AXIS.iter().find(|r| r.fmi == rest)?;
+    Some((r.fmu_min(), r.max))
+}
+
+/// A drive parameter's own range (and kind: whole counts, 0/1 switches), checked when the FMU
+/// parameter is set.
+pub fn check_servo_value(p: &ServoParameter, si: f64) -> Result<(), String> {
+    Range::of_servo(p).fmu_check(si)?;
+    match p.kind {
+        _ if p.admits(si) => Ok(()),
+        Kind::Switch => Err(format!("{} is neither 0 nor 1", number(si))),
+        _ => Err(format!("{} is not a whole number", number(si))),
+    }
+}
+
+/// Every value of the machine within its range, then the relations between values.
 pub fn check_machine(m: &Machine) -> Result<(), RangeError> {
     let top: [(&str, Option<f64>); 10] = [
         ("interpolation_period_s", Some(m.interpolation_period)),
@@ -300,16 +345,17 @@ pub fn check_machine(m: &Machine) -> Result<(), RangeError> {
         ("max_snap_mm_s4", Some(m.max_snap)),
         ("max_transition_jerk_mm_s3", m.max_transition_jerk),
     ];
+    let inch = m.nc.inch;
     for (key, value) in top {
         if let Some(v) = value {
-            row(MACHINE, key).check("", "", v)?;
+            row(MACHINE, key)?.check_in("", "", v, inch)?;
         }
     }
     for (axis, a) in ["x", "y", "z"].iter().zip(&m.axes) {
         let (prefix, fmi) = (format!("axis.{axis}."), format!("{axis}."));
-        row(AXIS, "max_velocity_mm_min").check(&prefix, &fmi, a.max_velocity)?;
-        row(AXIS, "max_acceleration_mm_s2").check(&prefix, &fmi, a.max_acceleration)?;
-        row(AXIS, "max_jerk_mm_s3").check(&prefix, &fmi, a.max_jerk)?;
+        row(AXIS, "max_velocity_mm_min")?.check_in(&prefix, &fmi, a.max_velocity, inch)?;
+        row(AXIS, "max_acceleration_mm_s2")?.check_in(&prefix, &fmi, a.max_acceleration, inch)?;
+        row(AXIS, "max_jerk_mm_s3")?.check_in(&prefix, &fmi, a.max_jerk, inch)?;
     }
     for (axis, s) in ["x", "y", "z"].iter().zip(&m.servo) {
         check_servo(&format!("servo.{axis}."), &format!("{axis}.servo."), s)?;
@@ -317,23 +363,35 @@ pub fn check_machine(m: &Machine) -> Result<(), RangeError> {
     Ok(())
 }
 
-/// The drive parameters of one axis; `prefix` and `fmi` start the key and the FMU name.
+/// The drive parameters of one axis, each in its range, then the relation between them (peak ≥
+/// rated torque); `prefix` and `fmi` start the key and the FMU name. A relation's message names
+/// both values, as keys and as FMU parameters.
 pub fn check_servo(prefix: &str, fmi: &str, s: &ServoParams) -> Result<(), RangeError> {
-    for (range, p) in SERVO.iter().zip(PARAMETERS) {
-        range.check(prefix, fmi, (p.get)(s))?;
-    }
-    let located = |key: &str, message: &str| RangeError {
-        key: format!("{prefix}{key}"),
-        message: format!("{prefix}{key}: {message}"),
-    };
-    if s.linear_scale != 0.0 && s.linear_scale != 1.0 {
-        return Err(located(
-            "linear_scale",
-            "must be 0 (motor encoder) or 1 (linear scale)",
-        ));
+    for p in PARAMETERS {
+        let v = (p.get)(s);
+        Range::of_servo(p).check(prefix, fmi, v)?;
+        if !p.admits(v) {
+            let what = if p.kind == Kind::Switch {
+                "0 or 1"
+            } else {
+                "a whole number"
+            };
+            return Err(RangeError {
+                key: format!("{prefix}{}", p.key),
+                message: format!("{prefix}{} = {}: must be {what}", p.key, number(v)),
+            });
+        }
     }
     if s.peak_torque < s.rated_torque {
-        return Err(located("peak_torque_n_m", "must not be below rated_torque_n_m"));
+        return Err(RangeError {
+            key: format!("{prefix}peak_torque_n_m"),
+            message: format!(
+                "{prefix}peak_torque_n_m = {} must not be below {prefix}rated_torque_n_m = {} \
+                 (FMU {fmi}peakTorque, {fmi}ratedTorque)",
+                number(s.peak_torque),
+                number(s.rated_torque)
+            ),
+        });
     }
     Ok(())
 }
@@ -386,12 +444,54 @@ mod tests {
     use super::*;
 
     #[test]
-    fn servo_rows_follow_the_parameter_table_and_defaults_are_inside() {
-        assert_eq!(SERVO.len(), PARAMETERS.len());
-        for (r, p) in SERVO.iter().zip(PARAMETERS) {
-            assert_eq!((r.key, r.fmi, r.factor), (p.key, p.fmi_name, p.factor));
-        }
+    fn defaults_are_inside_and_an_unknown_key_is_an_error() {
         assert_eq!(check_machine(&Machine::default()), Ok(()));
+        for p in PARAMETERS {
+            assert!(p.admits((p.get)(&ServoParams::default())), "{}", p.key);
+        }
+        let e = row(MACHINE, "max_fed_mm_min").unwrap_err();
+        assert_eq!(e.key, "max_fed_mm_min");
+        assert!(e.message.contains("no documented range"), "{}", e.message);
+    }
+
+    #[test]
+    fn a_relation_names_both_values_and_both_fmu_parameters() {
+        let mut m = Machine::default();
+        m.servo[2].rated_torque = 3.0;
+        let e = check_machine(&m).unwrap_err();
+        assert_eq!(e.key, "servo.z.peak_torque_n_m");
+        assert_eq!(
+            e.message,
+            "servo.z.peak_torque_n_m = 1.9 must not be below servo.z.rated_torque_n_m = 3 \
+             (FMU z.servo.peakTorque, z.servo.ratedTorque)"
+        );
+        m.servo[2].peak_torque = 9.0;
+        assert_eq!(check_machine(&m), Ok(()));
+    }
+
+    #[test]
+    fn own_ranges_of_fmu_parameters() {
+        let path_acc = row(MACHINE, "max_path_acceleration_mm_s2").unwrap();
+        assert_eq!(path_acc.fmu_check(0.0), Ok(()), "0: no path limit");
+        assert!(path_acc
+            .fmu_check(1e-5)
+            .unwrap_err()
+            .contains("(0 or 0.001 … 1000)"));
+        let counts = PARAMETERS.iter().find(|p| p.kind == Kind::Count).unwrap();
+        assert!(check_servo_value(counts, 4.5)
+            .unwrap_err()
+            .contains("whole number"));
+        assert!(check_servo_value(counts, 2.0)
+            .unwrap_err()
+            .contains("out of range (0 or 4"));
+        assert_eq!(check_servo_value(counts, 0.0), Ok(()));
+        assert_eq!(declared("x.servo.linearScale"), None, "a Boolean");
+        assert_eq!(declared("y.servo.encoderCounts"), Some((0.0, 1e9)));
+        assert_eq!(declared("machine.lookaheadBlocks"), Some((2.0, 65_536.0)));
+        assert_eq!(declared("machine.maxPathJerk"), Some((0.0, 1e6)));
+        assert_eq!(declared("z.loadForce"), Some((-1e7, 1e7)));
+        assert_eq!(declared("feedOverride"), Some((0.0, 2.0)));
+        assert_eq!(declared("x.command.position"), None);
     }
 
     #[test]

@@ -16,7 +16,7 @@ pub enum Units {
     Inch,
 }
 
-const INCH_MM: f64 = 25.4;
+use super::ranges::INCH_MM;
 
 fn scale(v: &mut Option<f64>) {
     if let Some(x) = v.as_mut() {

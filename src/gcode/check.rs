@@ -5,9 +5,15 @@
 /// Largest |coordinate| of an axis position, a centre offset (I/J/K), a radius (R) or a G64
 /// tolerance: 100 m, far beyond any machine table, far below where metres lose sub-µm precision.
 pub const MAX_COORDINATE_M: f64 = 100.0;
-/// Largest programmed feed: 1 000 000 mm/min (16.7 m/s).
+/// Largest feed any machine runs (the top of `max_feed_mm_min`): 1 000 000 mm/min (16.7 m/s).
+/// A larger F is not an error: as on an NC, it runs at the machine's largest feed.
 pub const MAX_FEED_MM_MIN: f64 = 1e6;
 pub const MAX_FEED_M_S: f64 = MAX_FEED_MM_MIN * 1e-3 / 60.0;
+/// Longest move at its programmed feed (length / F, or 1/F minutes in G93): one day, as the
+/// longest dwell. A slower move is refused before it starts instead of running for days.
+pub const MAX_MOVE_TIME_S: f64 = 86_400.0;
+/// Largest |R| of G10 L2 (degrees).
+pub const MAX_ROTATION_DEG: f64 = 1e6;
 /// Longest dwell G4 P: one day (s).
 pub const MAX_DWELL_S: f64 = 86_400.0;
 /// Most turns of a G2/G3 P word (P1 is the plain arc).
@@ -29,32 +35,31 @@ pub fn length(letter: u8, value: f64, unit: f64) -> Result<f64, String> {
     }
 }
 
-/// A feed F (program units per minute) in m/s: 0 < F ≤ MAX_FEED_M_S.
+/// A feed F (program units per minute) in m/s: any positive finite F (the caller caps it at
+/// the machine's largest feed); the range only keeps the number finite.
 pub fn feed(value: f64, unit: f64) -> Result<f64, String> {
     let v = value * unit / 60.0;
-    if v > 0.0 && v <= MAX_FEED_M_S {
+    if v > 0.0 && v.is_finite() {
         Ok(v)
     } else if value <= 0.0 {
         Err(format!("feed F{value} must be positive"))
     } else {
-        let bound = MAX_FEED_MM_MIN * (1e-3 / unit);
-        Err(format!(
-            "feed F{value} out of range (0 < F ≤ {bound} {}/min)",
-            unit_name(unit)
-        ))
+        Err(format!("feed F{value} out of range (not a finite number)"))
     }
 }
 
-/// Largest G93 F: a move in 60 µs.
-pub const MAX_INVERSE_FEED: f64 = 1e6;
+/// A G94 feed (m/s) as F in program units per minute, for messages.
+pub fn feed_shown(v: f64, unit: f64) -> String {
+    format!("{} {}/min", v * 60.0 / unit, unit_name(unit))
+}
 
-/// A G93 F (moves per minute): 0 < F ≤ MAX_INVERSE_FEED.
+/// A G93 F (moves per minute, the move takes 1/F minutes): any positive finite F.
 pub fn inverse_feed(value: f64) -> Result<(), String> {
-    if value > 0.0 && value <= MAX_INVERSE_FEED {
+    if value > 0.0 && value.is_finite() {
         Ok(())
     } else {
         Err(format!(
-            "inverse-time F{value} out of range (0 < F ≤ {MAX_INVERSE_FEED} per minute: the move takes 1/F minutes)"
+            "inverse-time F{value} must be positive (G93: the move takes 1/F minutes)"
         ))
     }
 }
@@ -108,7 +113,8 @@ mod tests {
         assert_eq!(e, "X100000.001 out of range (|X| ≤ 100000 mm)");
         let e = length(b'Y', f64::INFINITY, 25.4e-3).unwrap_err();
         assert!(e.contains("out of range") && e.contains(" in)"), "{e}");
-        assert!(feed(1e6, 1e-3).is_ok() && feed(1.000001e6, 1e-3).is_err());
+        assert!(feed(1e6, 1e-3).is_ok() && feed(f64::MAX, 25.4e-3).is_ok());
+        assert!(feed(f64::INFINITY, 1e-3).unwrap_err().contains("out of range"));
         assert!(feed(-1.0, 1e-3).unwrap_err().contains("positive"));
         assert_eq!(turns("G2", 1.0), Ok(0));
         assert_eq!(turns("G2", 10_000.0), Ok(9_999));

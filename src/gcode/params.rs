@@ -9,7 +9,8 @@ use std::collections::BTreeMap;
 
 pub const MAX_NUMBERED: usize = 5602;
 pub const MAX_NAMED: usize = 10_000;
-const MAX_DEPTH: usize = 64;
+/// Deepest nesting of `[` brackets and `#` indirections: 64 levels are read, a 65th is an error.
+pub const MAX_DEPTH: usize = 64;
 
 /// Function names (ACOS before COS is not needed: names are matched at the cursor).
 pub const FUNCTIONS: [&str; 14] = [
@@ -207,31 +208,42 @@ impl<'a> Expr<'a> {
         }
     }
 
-    /// A real value: number, `[expression]`, `#parameter`, function, with unary signs.
-    pub fn primary(&mut self) -> R<f64> {
+    /// One more level of `[` or `#` nesting, at most MAX_DEPTH.
+    fn enter(&mut self, at: usize) -> R<()> {
         self.depth += 1;
         if self.depth > MAX_DEPTH {
-            return Err((self.i, format!("expression nested deeper than {MAX_DEPTH}")));
+            return Err((at, format!("expression nested deeper than {MAX_DEPTH}")));
+        }
+        Ok(())
+    }
+
+    /// A real value: number, `[expression]`, `#parameter`, function, with unary signs (read
+    /// in a loop: any number of them nest nothing).
+    pub fn primary(&mut self) -> R<f64> {
+        let mut negate = false;
+        loop {
+            match self.peek() {
+                Some(b'-') => negate = !negate,
+                Some(b'+') => {}
+                _ => break,
+            }
+            self.i += 1;
         }
         let at = self.i;
         let v = match self.peek() {
-            Some(b'-') => {
-                self.i += 1;
-                -self.primary()?
-            }
-            Some(b'+') => {
-                self.i += 1;
-                self.primary()?
-            }
             Some(b'[') => {
+                self.enter(at)?;
                 self.i += 1;
                 let v = self.expression(0)?;
                 self.expect(b']', "']'")?;
+                self.depth -= 1;
                 v
             }
             Some(b'#') => {
+                self.enter(at)?;
                 self.i += 1;
                 let key = self.key()?;
+                self.depth -= 1;
                 self.get(&key, at)?
             }
             Some(c) if c.is_ascii_alphabetic() => self.function()?,
@@ -241,7 +253,7 @@ impl<'a> Expr<'a> {
                 v
             }
         };
-        self.depth -= 1;
+        let v = if negate { -v } else { v };
         if v.is_finite() {
             Ok(v)
         } else {

@@ -1,16 +1,20 @@
 //! The streaming reader: a cursor into the program text and the modal state, one line at a time.
 
 mod arc;
+mod biarc;
 mod comp;
 mod comp_geom;
 mod cycles;
+mod execute;
 mod flow;
+pub mod frame;
 mod inverse;
 mod modal;
+pub mod nurbs;
 mod offsets;
+mod spline;
 mod words;
 
-use super::check;
 use super::params::Params;
 use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
 use super::words::{split_with, Sets, Word};
@@ -18,6 +22,7 @@ use super::{Block, Motion, PathMode, Plane, StopKind};
 use crate::config::{CutterCorner, NcSetup};
 use crate::error::ProgramError;
 use crate::Vec3;
+use modal::Mode;
 use serde::{Deserialize, Serialize};
 
 /// Arc end points may disagree with the centre by the machine's `arc_radius_tolerance_mm`
@@ -31,6 +36,10 @@ fn default_arc_tolerance() -> f64 {
     DEFAULT_ARC_TOLERANCE_M
 }
 
+fn default_max_feed() -> f64 {
+    super::check::MAX_FEED_M_S
+}
+
 /// Axis indices (a, b, normal) of a plane, right-handed so that G3 is a positive rotation about
 /// the normal: G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
 pub fn plane_axes(plane: Plane) -> (usize, usize, usize) {
@@ -39,6 +48,19 @@ pub fn plane_axes(plane: Plane) -> (usize, usize, usize) {
         Plane::XZ => (2, 0, 1),
         Plane::YZ => (1, 2, 0),
     }
+}
+
+/// `%` demarcation (LinuxCNC G-code overview, "File Requirements"): a program whose first
+/// non-blank line is `%` ends at the next `%` line, which it must have.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+enum Percent {
+    /// No non-blank line read yet.
+    #[default]
+    Unknown,
+    /// Opened by `%` on this line.
+    Open(u32),
+    /// The first non-blank line was not `%`.
+    None,
 }
 
 /// Streaming reader. Clone is cheap (the text is shared, a file is reopened at the offset), so
@@ -50,13 +72,19 @@ pub struct Reader {
     /// Absolute arc radius tolerance (m, for G21; × 2.54 in G20).
     #[serde(default = "default_arc_tolerance")]
     arc_tolerance: f64,
+    /// Largest feed (m/s): a larger F runs at this one (machine `max_feed_mm_min`).
+    #[serde(default = "default_max_feed")]
+    max_feed: f64,
+    /// Chord tolerance (m) of the machine: splines are approximated within a share of it.
+    #[serde(default = "spline::default_chord_tolerance")]
+    chord_tolerance: f64,
     file: String,
     /// Byte offset of the next line to read.
     offset: usize,
     /// Number of the next line to read (1-based).
     line: u32,
     position: Vec3,
-    /// Programmed feed (m/s).
+    /// Programmed feed (m/s), capped at `max_feed`.
     feed: f64,
     path_mode: PathMode,
     /// Metres per program unit (G21 mm, G20 inch).
@@ -66,9 +94,11 @@ pub struct Reader {
     /// G90.1 (true) / G91.1: arc centres absolute or relative to the start point.
     arc_absolute: bool,
     plane: Plane,
-    /// Modal motion: 0, 1, 2, 3 (G0…G3), None before the first.
-    motion: Option<u8>,
+    /// Modal motion (group 1), None before the first and after G80.
+    motion: Option<Mode>,
     done: bool,
+    #[serde(default)]
+    percent: Percent,
     /// Switches, tool table, work offsets, home positions (machine file; G10 changes them).
     #[serde(default)]
     nc: Box<NcSetup>,
@@ -94,8 +124,12 @@ pub struct Reader {
     /// Drilling cycle words and retract mode.
     #[serde(default)]
     cycle: cycles::Cycle,
-    /// Blocks decoded but not yet returned (a line can give a motion and a stop, G28 two moves).
-    #[serde(skip)]
+    /// G5 continuation and the open G5.2 NURBS block.
+    #[serde(default)]
+    spline: Box<spline::Splines>,
+    /// Blocks decoded but not yet returned (a line can give a dwell, moves and a stop; G28 two
+    /// moves, a cycle or a spline many).
+    #[serde(default)]
     pending: std::collections::VecDeque<Block>,
     #[serde(skip)]
     words: Vec<Word>,
@@ -117,12 +151,14 @@ pub struct Reader {
 /// What the G and M words of a line ask for.
 #[derive(Default)]
 struct LineCodes {
-    motion: Option<(u8, u32)>,
-    dwell: Option<u32>,
+    motion: Option<(Mode, u32)>,
+    /// G80 on the line.
+    cancel: Option<u32>,
     stop: Option<(StopKind, u32)>,
     tool_change: bool,
     comp: Option<(i64, u32)>,
     tlo: Option<(i64, u32)>,
+    /// The group-0 code (G4, G10, G28, G30, G53, G92…, G5.3), in tenths.
     nonmodal: Option<(i64, u32)>,
 }
 
@@ -132,6 +168,8 @@ impl Reader {
         Reader {
             lines: Lines::new(source.into()),
             arc_tolerance: DEFAULT_ARC_TOLERANCE_M,
+            max_feed: default_max_feed(),
+            chord_tolerance: spline::default_chord_tolerance(),
             file: file.to_string(),
             offset: 0,
             line: 1,
@@ -147,6 +185,7 @@ impl Reader {
             plane: Plane::XY,
             motion: None,
             done: false,
+            percent: Percent::Unknown,
             nc: Box::default(),
             corner: CutterCorner::Arc,
             tool: offsets::ToolState::default(),
@@ -156,6 +195,7 @@ impl Reader {
             inverse_time: false,
             comp: Box::default(),
             cycle: cycles::Cycle::default(),
+            spline: Box::default(),
             pending: Default::default(),
             words: Vec::new(),
             params: Box::default(),
@@ -172,9 +212,12 @@ impl Reader {
         self
     }
 
-    /// The machine's arc tolerance and NC setup (switches, tool table, offsets, home positions).
+    /// The machine's arc tolerance, feed cap, chord tolerance and NC setup (switches, tool
+    /// table, offsets, home positions).
     pub fn with_machine(mut self, machine: &crate::config::Machine) -> Reader {
         self.arc_tolerance = machine.arc_radius_tolerance;
+        self.max_feed = machine.max_feed;
+        self.chord_tolerance = machine.chord_tolerance.min(machine.path_tolerance);
         self.corner = machine.nc.cutter_corner;
         if machine.nc.inch {
             self.unit = 25.4e-3;
@@ -209,19 +252,26 @@ impl Reader {
 
     /// Next block in machine coordinates before cutter compensation.
     fn next_raw(&mut self) -> Result<Option<Block>, ProgramError> {
-        if let Some(b) = self.pending.pop_front() {
-            return Ok(Some(b));
-        }
-        while !self.done {
+        loop {
+            if let Some(b) = self.pending.pop_front() {
+                return Ok(Some(b));
+            }
+            if self.done {
+                return Ok(None);
+            }
             let mut buf = std::mem::take(&mut self.line_buf);
             let result = self.read_and_execute(&mut buf);
             let end = buf.len();
             self.line_buf = buf;
             // Advance only past a line that was read without error, so a retry reports it again.
-            let block = result.inspect_err(|_| self.lines.reset())?;
+            result.inspect_err(|_| {
+                self.lines.reset();
+                self.pending.clear();
+            })?;
             if end == 0 {
-                self.check_flow_closed()?;
-                break;
+                self.end_of_text()?;
+                self.done = true;
+                continue;
             }
             match self.jump.take() {
                 Some(p) => (self.offset, self.line) = (p.offset, p.line),
@@ -230,18 +280,60 @@ impl Reader {
                     self.line += 1;
                 }
             }
-            if let Some(b) = block {
-                return Ok(Some(b));
-            }
-            if let Some(b) = self.pending.pop_front() {
-                return Ok(Some(b));
-            }
         }
-        Ok(None)
+    }
+
+    /// At the end of the text: nothing may be left open.
+    fn end_of_text(&self) -> Result<(), ProgramError> {
+        if let Percent::Open(line) = self.percent {
+            let msg =
+                "the program opens with '%' but has no closing '%' line (LinuxCNC \"File Requirements\")";
+            return Err(self.error(line, 1, msg));
+        }
+        self.check_spline_closed()?;
+        self.check_flow_closed()
+    }
+
+    /// The line of the opening `%`, if the program has one.
+    fn opening_percent(&self) -> Option<u32> {
+        match self.percent {
+            Percent::Open(line) => Some(line),
+            _ => None,
+        }
+    }
+
+    /// `%` lines (LinuxCNC "File Requirements"): true if the line was one and is done with.
+    fn percent_line(&mut self, line: u32, raw: &str) -> Result<bool, ProgramError> {
+        let text = raw.trim();
+        let is_percent = text == "%";
+        match self.percent {
+            Percent::Unknown if text.is_empty() => return Ok(true),
+            Percent::Unknown if is_percent => {
+                self.percent = Percent::Open(line);
+                return Ok(true);
+            }
+            Percent::Unknown => self.percent = Percent::None,
+            Percent::Open(_) if is_percent => {
+                // The program ends here; the rest of the file is not read.
+                self.percent = Percent::None;
+                self.check_spline_closed()?;
+                self.check_flow_closed()?;
+                self.done = true;
+                return Ok(true);
+            }
+            _ => {}
+        }
+        if text.starts_with('%') {
+            let col = raw.len() - raw.trim_start().len() + 1;
+            let msg = "'%' alone on a line ends a program only when its first non-blank line is '%' \
+                       (LinuxCNC \"File Requirements\"); elsewhere '%' is not a word";
+            return Err(self.error(line, col as u32, msg));
+        }
+        Ok(false)
     }
 
     /// Read the next line into `buf` (left empty at the end) and execute it.
-    fn read_and_execute(&mut self, buf: &mut Vec<u8>) -> Result<Option<Block>, ProgramError> {
+    fn read_and_execute(&mut self, buf: &mut Vec<u8>) -> Result<(), ProgramError> {
         let line = self.line;
         self.lines.read_line(self.offset, buf).map_err(|e| match e {
             LineError::Io(e) => self.error(line, 1, format!("cannot read the program: {e}")),
@@ -252,7 +344,7 @@ impl Reader {
             ),
         })?;
         if buf.is_empty() {
-            return Ok(None);
+            return Ok(());
         }
         let mut raw = std::str::from_utf8(buf).map_err(|e| {
             let msg = "invalid UTF-8 (a program is ASCII or UTF-8 text)";
@@ -262,12 +354,15 @@ impl Reader {
             // A UTF-8 byte-order mark; columns count from after it, as editors show them.
             raw = raw.strip_prefix('\u{feff}').unwrap_or(raw);
         }
+        if self.percent_line(line, raw)? {
+            return Ok(());
+        }
         let deleted;
         if raw.trim_start().starts_with('/') {
             // Block delete (LinuxCNC "Block Delete"): with the switch on the line is skipped,
             // with it off the '/' is ignored (a space keeps the columns).
             if self.nc.block_delete {
-                return Ok(None);
+                return Ok(());
             }
             deleted = raw.replacen('/', " ", 1);
             raw = &deleted;
@@ -282,8 +377,7 @@ impl Reader {
                 offset: self.offset + buf.len(),
                 line: line.saturating_add(1),
             };
-            self.o_word(here, next, raw, head)?;
-            return Ok(None);
+            return self.o_word(here, next, raw, head);
         }
         let mut words = std::mem::take(&mut self.words);
         let mut sets = std::mem::take(&mut self.sets);
@@ -297,195 +391,6 @@ impl Reader {
         let result = parsed.and_then(|()| self.execute(line, &words));
         self.words = words;
         result
-    }
-
-    /// Apply one line's words to the modal state; the block it makes, if any.
-    fn execute(&mut self, line: u32, words: &[Word]) -> Result<Option<Block>, ProgramError> {
-        let codes = self.modal_words(line, words)?;
-        let words::LineWords {
-            mut axes,
-            ijk,
-            mut r,
-            p,
-            extra,
-            f,
-        } = self.read_words(line, words)?;
-        self.apply_tool(line, &codes, &extra, &mut axes)?;
-        if let Some((code, col)) = codes.comp {
-            self.set_comp(line, code, col, extra.d)?;
-        }
-        let non_modal = self.non_modal(line, &codes, &extra, p, r, &axes)?;
-        if non_modal == offsets::NonModal::Consumed {
-            // The words were data (G10 L1 R, G92 X…).
-            (axes, r) = ([None; 3], None);
-        }
-        if let offsets::NonModal::Home(i) = non_modal {
-            return self.go_home(line, i, &axes, &codes);
-        }
-        if let Some(col) = codes.dwell {
-            let Some((seconds, pcol)) = p else {
-                return Err(self.error(line, col, "G4 needs P (dwell time in seconds)"));
-            };
-            let seconds = check::dwell(seconds).map_err(|m| self.error(line, pcol, m))?;
-            if axes.iter().any(Option::is_some) {
-                return Err(self.error(line, col, "G4 cannot move axes on the same line"));
-            }
-            let block = self.block(line, Motion::Dwell { seconds });
-            return Ok(Some(self.with_stop(block, &codes)));
-        }
-        let motion = self.motion_of(line, &codes, &axes)?;
-        if let Some((m, col)) = motion.filter(|m| m.0 >= 73) {
-            let fresh = !matches!(self.motion, Some(73..));
-            self.motion = Some(m);
-            let xy = axes;
-            let (r, q) = (r, extra.q);
-            return self.canned(line, col, m, fresh, cycles::CycleWords { xy, r, p, q }, &codes);
-        }
-        let mut block = None;
-        if let Some((m, col)) = motion {
-            let machine = non_modal == offsets::NonModal::Machine;
-            let words = words::LineWords {
-                axes,
-                ijk,
-                r,
-                p,
-                extra,
-                f,
-            };
-            block = self.move_block(line, m, col, &words, machine)?;
-        } else if let Some((_, col)) = ijk.iter().flatten().next().or(r.as_ref()) {
-            return Err(self.error(line, *col, "arc words without G2/G3"));
-        }
-        Ok(match block {
-            Some(b) => Some(self.with_stop(b, &codes)),
-            None => codes.stop.map(|(kind, _)| {
-                self.finish_on(kind);
-                self.block(line, Motion::Stop(kind))
-            }),
-        })
-    }
-
-    /// The motion of a line: its G0…G3 / cycle code, or the modal one when axis words are given.
-    fn motion_of(
-        &self,
-        line: u32,
-        codes: &LineCodes,
-        axes: &[words::Located; 3],
-    ) -> Result<Option<(u8, u32)>, ProgramError> {
-        let first_axis = || axes.iter().flatten().map(|a| a.1).min();
-        Ok(match (codes.motion, first_axis()) {
-            (Some(m), _) => Some(m),
-            (None, Some(col)) => match self.motion {
-                Some(m) => Some((m, col)),
-                None => {
-                    let msg = "axis words without a motion mode (G0, G1, G2, G3, G73, G81…G83)";
-                    return Err(self.error(line, col, msg));
-                }
-            },
-            (None, None) => None,
-        })
-    }
-
-    /// A G0…G3 move to the axis words (None for G0/G1 without them); G93 sets its feed.
-    fn move_block(
-        &mut self,
-        line: u32,
-        m: u8,
-        col: u32,
-        w: &words::LineWords,
-        machine: bool,
-    ) -> Result<Option<Block>, ProgramError> {
-        self.motion = Some(m);
-        let any_axis = w.axes.iter().any(Option::is_some);
-        let to = self.target(line, &w.axes, machine)?;
-        let feeds = m != 0 && (any_axis || m >= 2);
-        if feeds && self.inverse_time && w.f.is_none() {
-            let msg = format!("G{m} in G93 needs F on its line (inverse time: the move takes 1/F minutes)");
-            return Err(self.error(line, col, msg));
-        }
-        if feeds && !self.inverse_time && self.feed <= 0.0 {
-            return Err(self.error(line, col, format!("G{m} with no feed rate: F was never set")));
-        }
-        let mut block = match m {
-            0 | 1 if !any_axis => return Ok(None),
-            0 => self.block(line, Motion::Rapid { to }),
-            1 => self.block(line, Motion::Linear { to }),
-            _ => self.arc(line, col, m == 2, to, w.ijk, w.r, w.p)?,
-        };
-        if let (true, Some((f, _))) = (self.inverse_time && m != 0, w.f) {
-            block.feed = inverse::feed(&block, f);
-        }
-        self.position = to;
-        Ok(Some(block))
-    }
-
-    /// End point of a motion from the axis words (G90/G91), each within the coordinate range.
-    fn target(&self, line: u32, axes: &[Option<(f64, u32)>; 3], machine: bool) -> Result<Vec3, ProgramError> {
-        let mut to = self.position;
-        for (i, a) in axes.iter().enumerate() {
-            if let Some((v, c)) = a {
-                to[i] = if machine {
-                    v * self.unit
-                } else if self.absolute {
-                    v * self.unit + self.axis_offset(i)
-                } else {
-                    self.position[i] + v * self.unit
-                };
-                if to[i].abs() > check::MAX_COORDINATE_M {
-                    let msg = format!(
-                        "{} moves the axis to {} mm: out of range (|position| ≤ {} mm)",
-                        [b'X', b'Y', b'Z'][i] as char,
-                        to[i] * 1e3,
-                        check::MAX_COORDINATE_M * 1e3
-                    );
-                    return Err(self.error(line, *c, msg));
-                }
-            }
-        }
-        Ok(to)
-    }
-
-    /// G28 / G30 (LinuxCNC "G28, G28.1", "G30, G30.1"): a rapid to the programmed point if any,
-    /// then a rapid of the named axes (all without axis words) to the stored home position.
-    fn go_home(
-        &mut self,
-        line: u32,
-        i: usize,
-        axes: &[Option<(f64, u32)>; 3],
-        codes: &LineCodes,
-    ) -> Result<Option<Block>, ProgramError> {
-        let via = self.target(line, axes, false)?;
-        let none = axes.iter().all(Option::is_none);
-        let home: Vec3 = std::array::from_fn(|k| {
-            if none || axes[k].is_some() {
-                self.nc.home[i][k]
-            } else {
-                via[k]
-            }
-        });
-        let first = self.block(line, Motion::Rapid { to: via });
-        self.position = via;
-        let second = self.block(line, Motion::Rapid { to: home });
-        self.position = home;
-        self.motion = Some(0);
-        let second = self.with_stop(second, codes);
-        self.pending.push_front(second);
-        Ok(Some(first))
-    }
-
-    /// A line with a motion and M0/M1/M2/M30: the motion first, the stop after it.
-    fn with_stop(&mut self, block: Block, codes: &LineCodes) -> Block {
-        if let Some((kind, _)) = codes.stop {
-            self.pending.push_back(self.block(block.line, Motion::Stop(kind)));
-            self.finish_on(kind);
-        }
-        block
-    }
-
-    fn finish_on(&mut self, kind: StopKind) {
-        if kind == StopKind::End {
-            self.done = true;
-        }
     }
 
     fn block(&self, line: u32, motion: Motion) -> Block {

@@ -143,6 +143,11 @@ pub const MAX_PROGRAM_FILE_BYTES: u64 = 64 * 1024 * 1024;
 /// A program file read whole, for the FMU: a regular file of at most MAX_PROGRAM_FILE_BYTES,
 /// UTF-8 (a BOM is dropped). `name` is used in messages, invalid UTF-8 is located `name:line:col`.
 pub fn read_program_file(path: &std::path::Path, name: &str) -> Result<String, String> {
+    read_whole(path, name).map_err(crate::error::clip)
+}
+
+/// `read_program_file` before its message is clipped (a path may be megabytes long).
+fn read_whole(path: &std::path::Path, name: &str) -> Result<String, String> {
     let shown = path.display();
     let meta = std::fs::metadata(path).map_err(|e| format!("{shown}: {e}"))?;
     if !meta.is_file() {

@@ -1,5 +1,5 @@
-//! One line of G-code → its words (letter, number, column). Comments `( )` and `;`, spaces inside
-//! numbers (as LinuxCNC allows); with `split_with`, `#` parameters and `[ ]` expressions
+//! One line of G-code → its words (letter, number, column; `@` and `^` count as letters).
+//! Comments `( )` and `;`, spaces inside numbers (as LinuxCNC allows); with `split_with`, `#` parameters and `[ ]` expressions
 //! evaluated (params.rs); O-words reported with their column.
 
 use super::params::{Expr, Key, Params, FUNCTIONS};
@@ -78,7 +78,8 @@ fn split_inner(
                 ))
             }
             b'o' | b'O' => return Err(err(i, "an O-word must begin its line (LinuxCNC \"O Codes\")")),
-            c if c.is_ascii_alphabetic() => {
+            // `@` and `^`: polar distance and angle (LinuxCNC "Polar Coordinates").
+            c if c.is_ascii_alphabetic() || c == b'@' || c == b'^' => {
                 let col = i;
                 i += 1;
                 let k = i + b[i..].iter().take_while(|&&x| x == b' ' || x == b'\t').count();

@@ -171,7 +171,7 @@ impl Interpolator {
         let g = block.segment.eval(s);
         self.time_done += c.tau;
         self.distance_done += s;
-        self.last_line = block.line;
+        self.last_line = block.segment.line_at(s).unwrap_or(block.line);
         self.rest = g.p;
         self.last_tangent = g.d1;
     }
@@ -179,9 +179,11 @@ impl Interpolator {
     fn finish_block(&mut self, c: &Current) {
         self.time_done += c.duration;
         self.distance_done += c.planned.profile.length();
-        self.rest = c.planned.block.segment.end();
-        self.last_line = c.planned.block.line;
-        let g = c.planned.block.segment.eval(c.planned.block.segment.length());
+        let seg = &c.planned.block.segment;
+        self.rest = seg.end();
+        // The line of the geometry at the block's end (a chain stands for several).
+        self.last_line = seg.line_at(seg.length()).unwrap_or(c.planned.block.line);
+        let g = seg.eval(seg.length());
         if g.d1 != [0.0; 3] {
             self.last_tangent = g.d1;
         }

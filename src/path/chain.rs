@@ -107,17 +107,33 @@ impl Piece {
     }
 }
 
-/// Pieces back to back; `starts[k]` is the chain parameter where piece k begins.
+/// Pieces back to back; `starts[k]` is the chain parameter where piece k begins. `marks` maps
+/// the chain parameter back to the program: (s, line) where the tool comes onto the geometry of
+/// source line `line` (a piece's own line at its start, and inside pieces that stand for several
+/// programmed moves, where each begins), in increasing s.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Chain {
     pub pieces: Vec<Piece>,
     starts: Vec<f64>,
     length: f64,
+    marks: Vec<(f64, u32)>,
 }
 
 impl Chain {
     pub fn push(&mut self, piece: Piece) {
-        self.starts.push(self.length);
+        self.push_marked(piece, &[]);
+    }
+    /// Add a piece whose curve parameter u comes onto source line `line` at each (u, line) of
+    /// `marks` (increasing u; those outside the piece's range are dropped).
+    pub fn push_marked(&mut self, piece: Piece, marks: &[(f64, u32)]) {
+        let start = self.length;
+        self.marks.push((start, piece.line));
+        for &(u, line) in marks {
+            if u > piece.u0 && u < piece.u1 {
+                self.marks.push((start + (u - piece.u0), line));
+            }
+        }
+        self.starts.push(start);
         self.length += piece.length();
         self.pieces.push(piece);
     }
@@ -146,9 +162,10 @@ impl Chain {
     pub fn end(&self) -> Vec3 {
         self.pieces.last().expect("chains are never empty").end()
     }
-    /// Program line of the piece at s.
+    /// Program line of the geometry at s (see `marks`).
     pub fn line_at(&self, s: f64) -> u32 {
-        self.pieces[self.index(s.min(self.length))].line
+        let k = self.marks.partition_point(|&(x, _)| x <= s).saturating_sub(1);
+        self.marks.get(k).map_or(self.pieces[0].line, |m| m.1)
     }
 }
 

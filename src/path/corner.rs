@@ -4,8 +4,8 @@
 use super::arc::{chord_error_speed, constant_speed_limit, Arc};
 #[cfg(test)]
 use super::norm;
-use super::{add, cross, dot, scale, sub, unit};
-use crate::config::Machine;
+use super::{add, arc_limits, cross, dot, line_limits, scale, sub, unit, PathBlock, Segment};
+use crate::config::{CornerMode, Machine};
 use crate::Vec3;
 
 /// Turns sharper than this (cos of the turning angle below it) stop exactly: the transition
@@ -34,19 +34,86 @@ pub fn corner_feed(d_in: Vec3, d_out: Vec3, machine: &Machine) -> f64 {
 }
 
 /// Seed 004 eq. 10 (Pateloup): at a tangent junction whose curvature jumps by Δκ, the centripetal
-/// acceleration jumps by v²·Δκ within one period δt, which the axis jerk must allow:
-/// v²·|Δκ| ≤ δt·j. (The printed eq. 10, V = sqrt(R1R2/(|R1 − R2| δt j)), is not a speed
-/// dimensionally; this is its intended form, V = sqrt(R1R2·δt·j/|R1 − R2|).) We apply it per axis to
-/// the vector jump `dk` of d2 (so S-bends count both curvatures), with half of each axis' δt·j, the
-/// other half left for the change of the tangential acceleration in the same period.
-pub fn curvature_change_speed(dk: Vec3, machine: &Machine) -> f64 {
+/// acceleration jumps by v²·Δκ within one period δt: v²·|Δκ| ≤ δt·j. (The printed eq. 10,
+/// V = sqrt(R1R2/(|R1 − R2| δt j)), is not a speed dimensionally; this is its intended form,
+/// V = sqrt(R1R2·δt·j/|R1 − R2|).) We apply it per axis to the vector jump `dk` of d2 (so S-bends
+/// count both curvatures), with the jerk `step_jerk` each axis may spend on the step.
+pub fn curvature_change_speed(dk: Vec3, step_jerk: Vec3, period: f64) -> f64 {
     let mut v2 = f64::INFINITY;
-    for (i, ax) in machine.axes.iter().enumerate() {
+    for i in 0..3 {
         if dk[i].abs() > 1e-12 {
-            v2 = v2.min(0.5 * ax.max_jerk * machine.interpolation_period / dk[i].abs());
+            v2 = v2.min(step_jerk[i].max(0.0) * period / dk[i].abs());
         }
     }
     v2.sqrt()
+}
+
+/// Share of the axis jerk left to the blocks on both sides of a curvature step in the
+/// `polynomial` mode (the rest goes to the step).
+pub const STEP_NEIGHBOUR_JERK: f64 = 0.5;
+
+/// The jerk per axis that eq. 10's acceleration step may use: J_c of seed 004 Table 1 (the jerk on
+/// passage of a discontinuity in curvature, `max_transition_jerk`) where set, else the axis jerk J.
+/// Where the axis jerk must hold as the emitted positions show it (`keeps_jerk`, the `polynomial`
+/// mode), the step shares it with the blocks on both sides: a step Δa between two ticks adds at
+/// most ¾·Δa/T to a third difference of the positions (the weights of the quadratic B-spline of
+/// 3 ticks, largest ¾), the blocks add their own jerk, at most `STEP_NEIGHBOUR_JERK`·J with eased
+/// limits (`eased`): ¾·Δa/T ≤ J_c − ½·J. Elsewhere (modes that step by design) half of J_c, as
+/// before, the other half for the tangential acceleration's change.
+pub fn step_jerk(machine: &Machine, keeps_jerk: bool) -> Vec3 {
+    let mut j = [0.0; 3];
+    for (ji, ax) in j.iter_mut().zip(&machine.axes) {
+        let jc = machine.max_transition_jerk.unwrap_or(ax.max_jerk);
+        *ji = if keeps_jerk {
+            4.0 / 3.0 * (jc - STEP_NEIGHBOUR_JERK * ax.max_jerk)
+        } else {
+            0.5 * jc
+        };
+    }
+    j
+}
+
+/// The machine of the blocks next to a curvature step in the `polynomial` mode: every axis jerk
+/// at `STEP_NEIGHBOUR_JERK` of its own (see `step_jerk`).
+pub fn eased(machine: &Machine) -> Machine {
+    let mut m = machine.clone();
+    for a in &mut m.axes {
+        a.max_jerk *= STEP_NEIGHBOUR_JERK;
+    }
+    m
+}
+
+/// The junction speed at a tangent junction whose second derivative jumps by `dk` (eq. 10); in
+/// the `polynomial` mode the blocks on both sides get the eased limits that keep the axis jerk
+/// (`step_jerk`).
+pub(super) fn tangent_junction(dk: Vec3, held: &mut PathBlock, next: &mut PathBlock, m: &Machine) -> f64 {
+    let keeps_jerk = m.corner == CornerMode::Polynomial;
+    let v = curvature_change_speed(dk, step_jerk(m, keeps_jerk), m.interpolation_period);
+    if keeps_jerk && v > 0.0 && dk != [0.0; 3] {
+        let eased = eased(m);
+        ease(held, &eased);
+        ease(next, &eased);
+    }
+    v
+}
+
+/// Limits a line can stop with whatever comes after it: in the `polynomial` mode those it gets
+/// if a curvature step follows (`ease`).
+pub(super) fn stop_limits(line: &PathBlock, m: &Machine) -> crate::feed::Limits {
+    match (&line.segment, m.corner) {
+        (Segment::Line(l), CornerMode::Polynomial) => line_limits(l.direction(), &eased(m)),
+        _ => line.limits,
+    }
+}
+
+/// New limits for a block next to a curvature step of the polynomial mode (`eased`).
+fn ease(block: &mut PathBlock, eased: &Machine) {
+    block.limits = match &block.segment {
+        Segment::Line(l) => line_limits(l.direction(), eased),
+        Segment::Arc(a) => arc_limits(a, eased),
+        _ => return,
+    };
+    block.v_feed = block.v_feed.min(block.limits.v_max);
 }
 
 /// Seed 004 eq. 8: the arc tangent to both lines whose middle passes `tolerance` (TIT) from the
@@ -151,10 +218,24 @@ mod tests {
     fn eq10_line_to_arc() {
         // Line into a tangent R = 10 mm arc: v = sqrt(½·δt·j·R) = sqrt(0.5·0.001·50·0.01).
         let m = Machine::default();
-        let v = curvature_change_speed([0.0, 100.0, 0.0], &m);
+        let v = curvature_change_speed([0.0, 100.0, 0.0], step_jerk(&m, false), 1e-3);
         assert!((v - (0.5 * 0.001 * 50.0 * 0.01f64).sqrt()).abs() < 1e-12);
         // R1 = 10, R2 = 20 mm, same side: R1R2/|R1 − R2| = 20 mm.
-        let v = curvature_change_speed([0.0, 100.0 - 50.0, 0.0], &m);
+        let v = curvature_change_speed([0.0, 100.0 - 50.0, 0.0], step_jerk(&m, false), 1e-3);
         assert!((v - (0.5 * 0.001 * 50.0 * 0.02f64).sqrt()).abs() < 1e-12);
+        // Keeping the jerk: ¾·v²κ/δt + ½·j ≤ j, so v² = (2/3)·δt·j·R.
+        let v = curvature_change_speed([0.0, 100.0, 0.0], step_jerk(&m, true), 1e-3);
+        assert!((v - (2.0 / 3.0 * 0.001 * 50.0 * 0.01f64).sqrt()).abs() < 1e-12);
+        // With seed 004's J_c = 60 m/s³ on a 40 m/s³ axis: ¾·v²κ/δt ≤ 60 − 20.
+        let jc = Machine {
+            max_transition_jerk: Some(60.0),
+            axes: [crate::config::AxisLimits {
+                max_jerk: 40.0,
+                ..m.axes[0]
+            }; 3],
+            ..Machine::default()
+        };
+        let v = curvature_change_speed([0.0, 100.0, 0.0], step_jerk(&jc, true), 2e-3);
+        assert!((v - (4.0 / 3.0 * 40.0 * 0.002 * 0.01f64).sqrt()).abs() < 1e-12);
     }
 }

@@ -29,13 +29,14 @@ mod merge;
 mod micro;
 mod smooth;
 mod source;
+mod source_map;
 
 pub use arc::{
     arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, plane_axes, Arc, Shares,
 };
 pub use blend::Blend;
 pub use chain::{Chain, Curve, Piece};
-pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed};
+pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed, step_jerk};
 pub use hermite::{Hermite, Jet};
 pub use line::{line_limits, Line};
 pub use smooth::{Move, SmoothBuilder};
@@ -249,9 +250,6 @@ pub struct PathBlock {
 const MIN_LENGTH: f64 = 1e-12;
 /// Largest share of a programmed line a constant-speed transition may replace at one end.
 const TRANSITION_SHARE: f64 = 0.4;
-/// Margin on the sampled derivative bounds of a quintic transition (seed-004 mode only; the
-/// smooth mode's bounds are guaranteed).
-const BLEND_SPEED_MARGIN: f64 = 0.99;
 
 /// The segment held back, with what the next corner needs to know.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -267,8 +265,10 @@ struct Held {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PathBuilder {
     machine: Machine,
-    /// The machine with the transition jerk on every axis (seed 004 Table 1), where one is set:
-    /// the limits of the constant-speed transitions of the polynomial and circular modes.
+    /// The machine with the transition jerk on every axis (seed 004 Table 1: the jerk on passage
+    /// of a discontinuity in curvature), where one is set: the circular mode's corner arcs, whose
+    /// ends are such discontinuities (the polynomial mode's quintic is curvature-continuous and
+    /// keeps the axis jerk, as in the paper's eq. 54).
     transition_machine: Option<Machine>,
     held: Option<Held>,
     smooth: SmoothBuilder,
@@ -299,7 +299,8 @@ impl PathBuilder {
     /// collinear G1 moves are merged first (merge.rs).
     pub fn push(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
         let mut merger = std::mem::take(&mut self.merger);
-        merger.push(block, |b| self.push_merged(b, out));
+        let split = self.machine.corner == CornerMode::Smooth;
+        merger.push(block, split, |b| self.push_merged(b, out));
         self.merger = merger;
     }
 
@@ -386,7 +387,8 @@ impl PathBuilder {
     /// End of program: release the held segment, stopping at its end.
     pub fn finish(&mut self, out: &mut Vec<PathBlock>) {
         let mut merger = std::mem::take(&mut self.merger);
-        merger.flush(&mut |b: &Block| self.push_merged(b, out));
+        let split = self.machine.corner == CornerMode::Smooth;
+        merger.flush(split, &mut |b: &Block| self.push_merged(b, out));
         self.release(0.0, out);
         self.stop_smooth(out);
     }
@@ -443,7 +445,7 @@ impl PathBuilder {
             }
             0.0
         } else if 1.0 - cos <= corner::TANGENT_EPS {
-            curvature_change_speed(sub(g_out.d2, g_in.d2), m).min(feeds)
+            corner::tangent_junction(sub(g_out.d2, g_in.d2), &mut held.block, &mut next.block, m).min(feeds)
         } else if m.corner == CornerMode::AccelerationPeriod {
             // Seed 003's rule allows the velocity step of one period at the corner.
             corner_feed(t_in, t_out, m).min(feeds)
@@ -480,7 +482,7 @@ impl PathBuilder {
         // later. Slowing from v to any x < v takes (v + x)/2·T(v − x) ≤ v·T(v) = 2·D(v, 0): a speed
         // that stops in half the rest reaches every lower one.
         let rest = (1.0 - 2.0 * TRANSITION_SHARE) * next.programmed;
-        let v_stop = crate::feed::max_entry(m.profile, 0.5 * rest, 0.0, &next.block.limits);
+        let v_stop = crate::feed::max_entry(m.profile, 0.5 * rest, 0.0, &corner::stop_limits(&next.block, m));
         let (segment, v) = self.transition(h.end, t_in, t_out, tol, max_cut, feeds.min(v_stop))?;
         held.block.segment = Segment::Line(Line {
             start: h.start,
@@ -520,20 +522,21 @@ impl PathBuilder {
         max_cut: f64,
         feeds: f64,
     ) -> Option<(Segment, f64)> {
-        // Passing a transition at one speed, the axes may use the transition jerk.
-        let m = self.transition_machine.as_ref().unwrap_or(&self.machine);
+        let m = &self.machine;
         if dot(t_in, t_out) < corner::REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
             return None;
         }
         let (segment, v) = if m.corner == CornerMode::Circular {
+            // Passing the arc, whose ends are curvature discontinuities, the axes may use J_c.
             let arc = circular_blend(corner, t_in, t_out, tol, max_cut)?;
-            (Segment::Arc(arc), circular_blend_speed(&arc, m))
+            let jc = self.transition_machine.as_ref().unwrap_or(m);
+            (Segment::Arc(arc), circular_blend_speed(&arc, jc))
         } else {
-            // Eq. 52 with the half-length rule of §3.5: L ≤ half of either line.
+            // Eq. 52 with the half-length rule of §3.5: L ≤ half of either line; V_In from the
+            // exact bounds is eq. 54–57.
             let half = Blend::half_for_tolerance(t_in, t_out, tol).min(max_cut);
             let b = Blend::new(corner, t_in, t_out, half);
-            let v = BLEND_SPEED_MARGIN * constant_speed_limit(&b.derivative_bounds(), m);
-            (Segment::Blend(b), v)
+            (Segment::Blend(b), constant_speed_limit(&b.derivative_bounds(), m))
         };
         let v = v.min(feeds);
         (v > 0.0 && v.is_finite()).then_some((segment, v))

@@ -23,6 +23,7 @@ use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::transition;
 use super::source::{distance_to_segment, Source};
+use super::source_map;
 use super::{add, cross, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
@@ -33,8 +34,6 @@ use serde::{Deserialize, Serialize};
 /// Largest turning angle at a smooth vertex (cos), and longest segment smoothed.
 const SMOOTH_MIN_COS: f64 = 0.866_025_403_784_438_6; // 30°
 const SMOOTH_MAX_SEGMENT: f64 = 5e-3;
-/// Neighbouring segments of a smooth vertex differ in length by at most this factor.
-const SMOOTH_MAX_RATIO: f64 = 4.0;
 /// Pieces joined with first derivatives this close and second derivatives this close (1/m)
 /// need no transition.
 const JOINT_D1_EPS: f64 = 1e-9;
@@ -92,7 +91,13 @@ fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
     let (t_mid, k_mid) = circle_jet(a, b, c);
     let toward = if reverse { sub(a, b) } else { sub(b, a) };
     if dot(k_mid, k_mid) == 0.0 {
-        return (t_mid, k_mid);
+        // Collinear points: the chord's direction, pointing the way the path runs at `a`.
+        let t = if dot(t_mid, toward) < 0.0 {
+            scale(t_mid, -1.0)
+        } else {
+            t_mid
+        };
+        return (t, k_mid);
     }
     let o = add(b, scale(k_mid, 1.0 / dot(k_mid, k_mid)));
     let r = sub(o, a);
@@ -101,12 +106,14 @@ fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
     (unit(sub(toward, scale(rn, dot(toward, rn)))), k)
 }
 
-/// A span on its way through stage 2: the piece left of it and the programmed moves at its ends.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+/// A span on its way through stage 2: the piece left of it, the programmed moves at its ends and
+/// where the moves after the first begin on it (source_map.rs).
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub(super) struct Span {
     pub(super) piece: Piece,
     pub(super) first: Move,
     pub(super) last: Move,
+    pub(super) marks: Vec<(f64, u32)>,
 }
 
 impl Span {
@@ -115,6 +122,7 @@ impl Span {
             piece: Piece::whole(curve, mv.line),
             first: mv,
             last: mv,
+            marks: Vec::new(),
         }
     }
 }
@@ -301,6 +309,7 @@ impl SmoothBuilder {
                 piece: Piece::whole(Curve::Hermite(h), first.line),
                 first,
                 last,
+                marks: source_map::span_marks(moves),
             };
             self.junction(span, m, out);
         } else if moves.len() == 1 {
@@ -330,7 +339,7 @@ impl SmoothBuilder {
         let b = jet_at(&next.piece, 0.0);
         let joined = norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS;
         if joined {
-            self.piece(held.piece, held.last.feed, false, None, m, out);
+            self.piece(held.piece, &held.marks, held.last.feed, false, None, m, out);
             self.held = Some(next);
             return;
         }
@@ -338,14 +347,20 @@ impl SmoothBuilder {
             Some((d_held, d_next, h, limits)) => {
                 held.piece.u1 -= d_held;
                 next.piece.u0 += d_next;
-                self.piece(held.piece, held.last.feed, false, None, m, out);
+                self.piece(held.piece, &held.marks, held.last.feed, false, None, m, out);
                 let feed = held.last.feed.min(next.first.feed);
+                let symmetric = matches!(
+                    (held.piece.curve, next.piece.curve),
+                    (Curve::Line(_), Curve::Line(_))
+                );
+                let (a, b, tol) = (&held.last.source, &next.first.source, held.last.tolerance);
+                let marks = [(source_map::switch(&h, a, b, tol, symmetric), next.first.line)];
                 let piece = Piece::whole(Curve::Hermite(h), held.last.line);
-                self.piece(piece, feed, false, Some(limits), m, out);
+                self.piece(piece, &marks, feed, false, Some(limits), m, out);
                 self.held = Some(next);
             }
             None => {
-                self.piece(held.piece, held.last.feed, true, None, m, out);
+                self.piece(held.piece, &held.marks, held.last.feed, true, None, m, out);
                 self.held = Some(next);
             }
         }
@@ -353,16 +368,18 @@ impl SmoothBuilder {
 
     fn flush_held(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
         if let Some(held) = self.held.take() {
-            self.piece(held.piece, held.last.feed, true, None, m, out);
+            self.piece(held.piece, &held.marks, held.last.feed, true, None, m, out);
         }
         self.close_chain(0.0, m, out);
     }
 
-    /// Stage 3: add a piece to the chain; `stop` after it.
-    /// `known`: the piece's own limits if already computed (`piece_limits`).
+    /// Stage 3: add a piece to the chain (`marks`: where source lines begin on it); `stop` after
+    /// it. `known`: the piece's own limits if already computed (`piece_limits`).
+    #[allow(clippy::too_many_arguments)]
     fn piece(
         &mut self,
         piece: Piece,
+        marks: &[(f64, u32)],
         feed: f64,
         stop: bool,
         known: Option<CurveLimits>,
@@ -425,7 +442,7 @@ impl SmoothBuilder {
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
             self.cells.extend(cells);
-            self.chain.push(piece);
+            self.chain.push_marked(piece, marks);
         }
         if stop {
             self.close_chain(0.0, m, out);
@@ -523,8 +540,8 @@ fn joined_loss(
     (loss <= apart).then_some(loss)
 }
 
-/// The vertex between two moves is smooth: two short line moves of one feed and similar
-/// length that turn gently.
+/// The vertex between two moves is smooth: two short line moves of one feed that turn gently,
+/// whatever their lengths (CAM output alternates 8 µm and 1 µm moves; the fit checks every chord).
 fn smooth_vertex(prev: &Move, next: &Move) -> bool {
     let (Source::Line(a), Source::Line(b)) = (prev.source, next.source) else {
         return false;
@@ -536,8 +553,6 @@ fn smooth_vertex(prev: &Move, next: &Move) -> bool {
         || prev.feed != next.feed
         || la > SMOOTH_MAX_SEGMENT
         || lb > SMOOTH_MAX_SEGMENT
-        || la > SMOOTH_MAX_RATIO * lb
-        || lb > SMOOTH_MAX_RATIO * la
         || cos < SMOOTH_MIN_COS)
 }
 

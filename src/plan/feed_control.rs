@@ -47,6 +47,9 @@ pub enum Replan {
     Done { cut: bool },
 }
 
+/// Largest feed override factor (the FMU input `feedOverride` declares 0 … this).
+pub const MAX_FEED_OVERRIDE: f64 = 2.0;
+
 /// Feed override and hold state between ticks.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct FeedControl {
@@ -108,7 +111,11 @@ impl FeedControl {
         queue: &mut VecDeque<Planned>,
         planner: &mut Planner,
     ) {
-        let k = if k.is_finite() { k.clamp(0.0, 2.0) } else { 1.0 };
+        let k = if k.is_finite() {
+            k.clamp(0.0, MAX_FEED_OVERRIDE)
+        } else {
+            1.0
+        };
         if k != self.feed_override {
             let was_holding = self.holding();
             self.feed_override = k;

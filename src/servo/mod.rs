@@ -5,7 +5,7 @@ mod drive;
 mod params;
 
 pub use drive::{expm, plant_matrix, AxisCommand, PlantState, ServoAxis, MAX_SQUARINGS};
-pub use params::{ServoParameter, ServoParams, PARAMETERS};
+pub use params::{Kind, ServoParameter, ServoParams, PARAMETERS};
 
 use serde::{Deserialize, Serialize};
 

@@ -1,5 +1,6 @@
-//! Drive parameters of one axis: one table gives the machine-file key (with its unit), the FMU
-//! name, the SI factor and the default, so the TOML reader, the FMU variables and the docs agree.
+//! Drive parameters of one axis: ONE table gives the machine-file key (with its unit), the FMU
+//! name and type, the SI factor and the documented range, so the TOML reader, the range check
+//! (config/ranges.rs), the FMU variables and the docs agree.
 
 use serde::{Deserialize, Serialize};
 
@@ -78,24 +79,62 @@ impl Default for ServoParams {
     }
 }
 
-/// One parameter: machine-file key (unit in the name), FMU name, SI unit, factor file → SI.
+/// How a parameter is kept (f64 in [`ServoParams`]) and shown to an FMU importer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// A physical value (FMU Real).
+    Real,
+    /// A whole number of counts (FMU Integer).
+    Count,
+    /// 0 or 1 (FMU Boolean).
+    Switch,
+}
+
+/// One parameter, the ONE table of what the machine file, the range check and the FMU know about
+/// it: machine-file key (its unit in the name), FMU name, SI unit (FMU), the unit the file writes
+/// and its factor to SI, the documented range in SI (`zero_ok`: exactly 0 is also allowed, "off"
+/// or "ideal"), the kind and the description.
 pub struct ServoParameter {
     pub key: &'static str,
     pub fmi_name: &'static str,
     pub unit: &'static str,
+    pub file_unit: &'static str,
     pub factor: f64,
+    pub min: f64,
+    pub max: f64,
+    pub zero_ok: bool,
+    pub kind: Kind,
     pub description: &'static str,
     pub get: fn(&ServoParams) -> f64,
     pub set: fn(&mut ServoParams, f64),
 }
 
+impl ServoParameter {
+    /// `x` (SI) is within the documented range (and a whole number, or 0 or 1, for counts and
+    /// switches).
+    pub fn admits(&self, x: f64) -> bool {
+        let kind_ok = match self.kind {
+            Kind::Real => true,
+            Kind::Count => x.fract() == 0.0,
+            Kind::Switch => x == 0.0 || x == 1.0,
+        };
+        kind_ok && ((self.zero_ok && x == 0.0) || (x >= self.min && x <= self.max))
+    }
+}
+
 macro_rules! p {
-    ($key:literal, $fmi:literal, $unit:literal, $factor:expr, $field:ident, $desc:literal) => {
+    ($key:literal, $fmi:literal, $unit:literal, $file_unit:literal, $factor:expr, $min:expr, $max:expr,
+     $kind:ident, $field:ident, $desc:literal) => {
         ServoParameter {
             key: $key,
             fmi_name: $fmi,
             unit: $unit,
+            file_unit: $file_unit,
             factor: $factor,
+            min: $min,
+            max: $max,
+            zero_ok: false,
+            kind: Kind::$kind,
             description: $desc,
             get: |s| s.$field,
             set: |s, v| s.$field = v,
@@ -104,169 +143,36 @@ macro_rules! p {
 }
 
 const RPM: f64 = 2.0 * std::f64::consts::PI / 60.0;
+const MM: f64 = 1e-3;
 
+/// Every drive parameter. Ranges (SI) are wide enough for any real feed drive and narrow enough
+/// that no value can make the matrix exponential or the sub-stepping run away.
+#[rustfmt::skip]
 pub const PARAMETERS: &[ServoParameter] = &[
-    p!(
-        "screw_lead_mm",
-        "screwLead",
-        "m",
-        1e-3,
-        screw_lead,
-        "ball-screw lead per motor revolution"
-    ),
-    p!(
-        "rotor_inertia_kg_m2",
-        "rotorInertia",
-        "kg.m2",
-        1.0,
-        rotor_inertia,
-        "motor rotor inertia"
-    ),
-    p!(
-        "screw_inertia_kg_m2",
-        "screwInertia",
-        "kg.m2",
-        1.0,
-        screw_inertia,
-        "screw and coupling inertia"
-    ),
-    p!(
-        "table_mass_kg",
-        "tableMass",
-        "kg",
-        1.0,
-        table_mass,
-        "table and workpiece mass"
-    ),
-    p!(
-        "axial_stiffness_n_um",
-        "axialStiffness",
-        "N/m",
-        1e6,
-        axial_stiffness,
-        "axial stiffness of screw, nut, bearings"
-    ),
-    p!(
-        "axial_damping_n_s_m",
-        "axialDamping",
-        "N.s/m",
-        1.0,
-        axial_damping,
-        "axial damping"
-    ),
-    p!(
-        "viscous_friction_n_s_m",
-        "viscousFriction",
-        "N.s/m",
-        1.0,
-        viscous_friction,
-        "viscous friction on the table"
-    ),
-    p!(
-        "coulomb_friction_n",
-        "coulombFriction",
-        "N",
-        1.0,
-        coulomb_friction,
-        "Coulomb friction on the table"
-    ),
-    p!(
-        "friction_velocity_mm_s",
-        "frictionVelocity",
-        "m/s",
-        1e-3,
-        friction_velocity,
-        "smoothing band of Coulomb friction"
-    ),
-    p!(
-        "rated_torque_n_m",
-        "ratedTorque",
-        "N.m",
-        1.0,
-        rated_torque,
-        "rated motor torque"
-    ),
-    p!(
-        "peak_torque_n_m",
-        "peakTorque",
-        "N.m",
-        1.0,
-        peak_torque,
-        "peak motor torque (saturation)"
-    ),
-    p!(
-        "max_speed_rpm",
-        "maxSpeed",
-        "rad/s",
-        RPM,
-        max_speed,
-        "maximum motor speed"
-    ),
-    p!(
-        "encoder_counts",
-        "encoderCounts",
-        "1",
-        1.0,
-        encoder_counts,
-        "encoder counts per revolution (0: ideal)"
-    ),
-    p!("kv_1_s", "kv", "1/s", 1.0, kv, "position loop gain"),
-    p!(
-        "velocity_gain_n_m_s_rad",
-        "velocityGain",
-        "N.m.s/rad",
-        1.0,
-        velocity_gain,
-        "velocity loop proportional gain"
-    ),
-    p!(
-        "velocity_integral_time_ms",
-        "velocityIntegralTime",
-        "s",
-        1e-3,
-        velocity_integral_time,
-        "velocity loop integral time"
-    ),
-    p!(
-        "current_time_constant_ms",
-        "currentTimeConstant",
-        "s",
-        1e-3,
-        current_time_constant,
-        "current loop time constant"
-    ),
-    p!(
-        "velocity_feedforward",
-        "velocityFeedforward",
-        "1",
-        1.0,
-        velocity_feedforward,
-        "velocity feed-forward 0…1"
-    ),
-    p!(
-        "acceleration_feedforward",
-        "accelerationFeedforward",
-        "1",
-        1.0,
-        acceleration_feedforward,
-        "acceleration feed-forward 0…1"
-    ),
-    p!(
-        "linear_scale",
-        "linearScale",
-        "1",
-        1.0,
-        linear_scale,
-        "position feedback: 0 motor encoder, 1 linear scale"
-    ),
-    p!(
-        "servo_rate_hz",
-        "servoRate",
-        "Hz",
-        1.0,
-        servo_rate,
-        "servo sub-step rate"
-    ),
+    p!("screw_lead_mm", "screwLead", "m", "mm", MM, 1e-5, 0.1, Real, screw_lead, "ball-screw lead per motor revolution"),
+    p!("rotor_inertia_kg_m2", "rotorInertia", "kg.m2", "kg·m²", 1.0, 1e-7, 1.0, Real, rotor_inertia, "motor rotor inertia"),
+    p!("screw_inertia_kg_m2", "screwInertia", "kg.m2", "kg·m²", 1.0, 0.0, 1.0, Real, screw_inertia, "screw and coupling inertia"),
+    p!("table_mass_kg", "tableMass", "kg", "kg", 1.0, 1e-2, 1e5, Real, table_mass, "table and workpiece mass"),
+    p!("axial_stiffness_n_um", "axialStiffness", "N/m", "N/µm", 1e6, 1e4, 1e11, Real, axial_stiffness, "axial stiffness of screw, nut, bearings"),
+    p!("axial_damping_n_s_m", "axialDamping", "N.s/m", "N·s/m", 1.0, 0.0, 1e7, Real, axial_damping, "axial damping"),
+    p!("viscous_friction_n_s_m", "viscousFriction", "N.s/m", "N·s/m", 1.0, 0.0, 1e7, Real, viscous_friction, "viscous friction on the table"),
+    p!("coulomb_friction_n", "coulombFriction", "N", "N", 1.0, 0.0, 1e5, Real, coulomb_friction, "Coulomb friction on the table"),
+    p!("friction_velocity_mm_s", "frictionVelocity", "m/s", "mm/s", MM, 1e-7, 1.0, Real, friction_velocity, "smoothing band of Coulomb friction"),
+    p!("rated_torque_n_m", "ratedTorque", "N.m", "N·m", 1.0, 1e-3, 1e4, Real, rated_torque, "rated motor torque"),
+    p!("peak_torque_n_m", "peakTorque", "N.m", "N·m", 1.0, 1e-3, 1e4, Real, peak_torque, "peak motor torque (saturation; not below ratedTorque)"),
+    p!("max_speed_rpm", "maxSpeed", "rad/s", "rpm", RPM, 1.0 * RPM, 1e5 * RPM, Real, max_speed, "maximum motor speed"),
+    ServoParameter {
+        zero_ok: true,
+        ..p!("encoder_counts", "encoderCounts", "1", "", 1.0, 4.0, 1e9, Count, encoder_counts, "encoder counts per revolution (0: ideal)")
+    },
+    p!("kv_1_s", "kv", "1/s", "1/s", 1.0, 0.1, 1e3, Real, kv, "position loop gain"),
+    p!("velocity_gain_n_m_s_rad", "velocityGain", "N.m.s/rad", "N·m·s/rad", 1.0, 1e-6, 1e3, Real, velocity_gain, "velocity loop proportional gain"),
+    p!("velocity_integral_time_ms", "velocityIntegralTime", "s", "ms", MM, 1e-5, 10.0, Real, velocity_integral_time, "velocity loop integral time"),
+    p!("current_time_constant_ms", "currentTimeConstant", "s", "ms", MM, 1e-6, 0.1, Real, current_time_constant, "current loop time constant"),
+    p!("velocity_feedforward", "velocityFeedforward", "1", "", 1.0, 0.0, 1.0, Real, velocity_feedforward, "velocity feed-forward 0…1"),
+    p!("acceleration_feedforward", "accelerationFeedforward", "1", "", 1.0, 0.0, 1.0, Real, acceleration_feedforward, "acceleration feed-forward 0…1"),
+    p!("linear_scale", "linearScale", "1", "(0 or 1)", 1.0, 0.0, 1.0, Switch, linear_scale, "position feedback: 0 motor encoder, 1 linear scale"),
+    p!("servo_rate_hz", "servoRate", "Hz", "Hz", 1.0, 100.0, 1e5, Real, servo_rate, "servo sub-step rate"),
 ];
 
 impl ServoParams {
@@ -287,30 +193,5 @@ impl ServoParams {
             (p.set)(&mut s, v * p.factor);
         }
         Ok(s)
-    }
-
-    /// Value of the parameter with this FMU name (SI).
-    pub fn get(&self, fmi_name: &str) -> Option<f64> {
-        PARAMETERS
-            .iter()
-            .find(|p| p.fmi_name == fmi_name)
-            .map(|p| (p.get)(self))
-    }
-
-    pub fn set(&mut self, fmi_name: &str, value: f64) -> Result<(), String> {
-        let p = PARAMETERS
-            .iter()
-            .find(|p| p.fmi_name == fmi_name)
-            .ok_or(format!("no servo parameter {fmi_name}"))?;
-        let mut s = *self;
-        (p.set)(&mut s, value);
-        s.check()?;
-        *self = s;
-        Ok(())
-    }
-
-    /// Physical ranges: the table of `config::ranges` (one place for the CLI and the FMU).
-    pub fn check(&self) -> Result<(), String> {
-        crate::config::ranges::check_servo("", "", self).map_err(|e| e.message)
     }
 }

@@ -37,30 +37,23 @@ pub unsafe extern "C" fn logger(
     (*(env as *const Log)).lock().unwrap().push(text);
 }
 
-/// target/<profile>/libcnc_motion.so beside target/<profile>/deps/fmu_abi-…; `cargo test` builds
-/// the rlib only, so the shared library is (re)built here, once per test process (a no-op when it
-/// is up to date, and never a stale library from an older build).
+/// The CncMotion shared library the tests load: `CNC_MOTION_LIB` when set (e.g. the binary of a
+/// packaged FMU), else the one cargo built for this test run. The library target is a cdylib too,
+/// so cargo compiles the shared library together with the rlib the tests link
+/// (target/<profile>/deps/libcnc_motion.so, beside this test's executable): never stale, never
+/// built inside a test, and with `cargo test --release` the very build `make build` made.
 pub fn library_path() -> PathBuf {
-    static BUILD: Mutex<()> = Mutex::new(());
-    let exe = std::env::current_exe().unwrap();
-    let profile_dir = exe.parent().unwrap().parent().unwrap().to_path_buf();
-    let lib = profile_dir.join("libcnc_motion.so");
-    static BUILT: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-    let _guard = BUILD.lock().unwrap();
-    if !BUILT.swap(true, std::sync::atomic::Ordering::SeqCst) {
-        let target_dir = profile_dir.parent().unwrap();
-        let mut cmd = std::process::Command::new(env!("CARGO"));
-        cmd.args(["build", "--lib", "-p", "cnc-motion", "--target-dir"])
-            .arg(target_dir);
-        if profile_dir.file_name().is_some_and(|n| n == "release") {
-            cmd.arg("--release");
-        }
-        let status = cmd
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .status()
-            .expect("cargo build --lib");
-        assert!(status.success(), "building libcnc_motion.so failed");
+    if let Some(path) = std::env::var_os("CNC_MOTION_LIB") {
+        return PathBuf::from(path);
     }
+    let exe = std::env::current_exe().expect("the test executable's path");
+    let lib = exe.with_file_name(libloading::library_filename("cnc_motion"));
+    assert!(
+        lib.exists(),
+        "{} missing: run the tests through cargo (`cargo test`, which builds the library with \
+         them) or set CNC_MOTION_LIB to a built libcnc_motion.so",
+        lib.display()
+    );
     lib
 }
 
@@ -102,7 +95,7 @@ pub type FnFree = unsafe extern "C" fn(Component);
 impl Fmu {
     pub fn load() -> Fmu {
         let lib = unsafe { Library::new(library_path()) }
-            .expect("libcnc_motion.so (built by cargo with the tests)");
+            .unwrap_or_else(|e| panic!("loading {}: {e}", library_path().display()));
         let xml = cnc_motion::fmu::model_description();
         let guid = xml
             .split("guid=\"")
@@ -153,10 +146,15 @@ impl Fmu {
     }
 
     pub fn instantiate(&self, name: &str) -> Component {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/resources");
+        self.instantiate_in(name, std::path::Path::new(dir))
+    }
+
+    /// An instance whose resources folder is `dir`.
+    pub fn instantiate_in(&self, name: &str, dir: &std::path::Path) -> Component {
         let f = sym!(self, "fmi2Instantiate", FnInstantiate);
         let n = CString::new(name).unwrap();
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/resources");
-        let uri = CString::new(format!("file://{dir}")).unwrap();
+        let uri = CString::new(format!("file://{}", dir.display())).unwrap();
         unsafe {
             f(
                 n.as_ptr(),

@@ -1,15 +1,16 @@
 """The CLI contract (design.md): profile and run, JSON keys, errors with file:line:col."""
+import pathlib
 import json
 import subprocess
 
-from cnc_motion_sim.paths import CORPUS, ROOT
+from repo import CORPUS
 
 
-def run(cli, *args):
+def run(cli: str, *args: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run([cli, *args], capture_output=True, text=True)
 
 
-def test_trapezoid_profile_matches_closed_form(cli):
+def test_trapezoid_profile_matches_closed_form(cli: str) -> None:
     # Rest to rest, L = 6 mm, v = 100 mm/s, A = 2000 mm/s²: ramps of v/A = 0.05 s and a cruise
     # of (L − v²/A)/v = 0.01 s (seed 001, Table 1, linear column: 0.1100 s).
     res = run(cli, "profile", "--length", "6", "--v-max", "100", "--a-max", "2000", "--j-max", "60000",
@@ -21,7 +22,7 @@ def test_trapezoid_profile_matches_closed_form(cli):
     assert out["a_peak_mm_s2"] <= 2000.0 * (1 + 1e-12)
 
 
-def test_run_pessoles_summary(cli):
+def test_run_pessoles_summary(cli: str) -> None:
     res = run(cli, "run", str(CORPUS / "pessoles_linear.ngc"),
               "--machine", str(CORPUS / "dmu50_840d.toml"), "--json")
     assert res.returncode == 0, res.stderr
@@ -39,7 +40,7 @@ def test_run_pessoles_summary(cli):
         assert out["max_axis_acceleration_mm_s2"][i] <= 9800 * (1 + 1e-9)
 
 
-def test_bad_program_exit_2_with_location(cli, tmp_path):
+def test_bad_program_exit_2_with_location(cli: str, tmp_path: pathlib.Path) -> None:
     prog = tmp_path / "bad.ngc"
     prog.write_text("G21 G90\nG1 X1 F100\nG33 Z-1 K1\n")
     res = run(cli, "run", str(prog))

@@ -1,5 +1,7 @@
 """Co-simulation CncMotion ⇄ MachineStructure: the four masters agree, and jerk-limited profiles
 leave less residual vibration in the frame than the trapezoid."""
+import pathlib
+from typing import Any
 import json
 
 import numpy as np
@@ -7,22 +9,22 @@ import pytest
 
 from cnc_motion_sim import cosim
 import cnc_motion_sim as sim
-from cnc_motion_sim.paths import CNC_FMU, ROOT, STRUCTURE_FMU
+from repo import CNC_FMU, ROOT, STRUCTURE_FMU
 
 T = 1.5  # s of the default program: plunge, first edges and corners
 
 
 @pytest.fixture(scope="module")
-def own(cnc, structure):
+def own(cnc: sim.Unpacked, structure: sim.Unpacked) -> dict[str, Any]:
     return cosim.cosim_slaves(cnc, structure, stop_time=T)
 
 
 @pytest.fixture(scope="module")
-def own_ns(cnc, structure):
+def own_ns(cnc: sim.Unpacked, structure: sim.Unpacked) -> dict[str, Any]:
     return cosim.cosim_slaves(cnc, structure, stop_time=T, grid="ns")
 
 
-def _compare(ref, other, label):
+def _compare(ref: dict[str, Any], other: dict[str, Any], label: str) -> float:
     n = min(len(ref["time"]), len(other["time"]))
     assert n >= int(T / cosim.H) - 1, f"{label}: only {n} steps"
     np.testing.assert_allclose(other["time"][:n], ref["time"][:n], rtol=0, atol=1e-9)
@@ -41,7 +43,7 @@ def _compare(ref, other, label):
     return worst
 
 
-def test_coupling_is_live(own, cnc, structure):
+def test_coupling_is_live(own: dict[str, Any], cnc: sim.Unpacked, structure: sim.Unpacked) -> None:
     """Drive forces reach the frame; with the tables' mass on it (two-way coupling, opt-in) the frame
     pushes back on the axes and the loop stays bounded."""
     f = np.max(np.abs(own["cnc.x.driveForce"]))
@@ -59,13 +61,14 @@ STABLE = {f"{a}.couplingMass": 1.0 for a in "xyz"}  # a two-way loop that is sta
 
 
 @pytest.fixture(scope="module")
-def stable_ssp(fmus, tmp_path_factory):
+def stable_ssp(fmus: tuple[pathlib.Path, pathlib.Path], tmp_path_factory: pytest.TempPathFactory) -> pathlib.Path:
     from cnc_motion_sim.ssp import make_ssp
-    return make_ssp(out=tmp_path_factory.mktemp("ssp") / "stable.ssp", structure_params=STABLE)
+    return make_ssp(tmp_path_factory.mktemp("ssp") / "stable.ssp", *fmus, structure_params=STABLE)
 
 
 @pytest.mark.parametrize("grid", ["exact", "ns"])
-def test_masters_agree_on_a_stable_two_way_loop(cnc, structure, stable_ssp, grid):
+def test_masters_agree_on_a_stable_two_way_loop(cnc: sim.Unpacked, structure: sim.Unpacked,
+                                                stable_ssp: pathlib.Path, grid: str) -> None:
     """Parameters bound in the SSP (libcosim) = parameter_set (fmpy.ssp) = set by the own master."""
     own_ = cosim.cosim_slaves(cnc, structure, structure_params=STABLE, stop_time=T, grid=grid)
     assert max(np.max(np.abs(own_[f"structure.{a}.loadForce"])) for a in "xyz") > 0
@@ -80,11 +83,12 @@ def test_masters_agree_on_a_stable_two_way_loop(cnc, structure, stable_ssp, grid
         _compare(own_, cosim.cosim_libcosim(stable_ssp, stop_time=T), "libcosim (stable)")
 
 
-def test_libcosim_sets_the_profile_through_the_integer_index(cnc, structure, tmp_path):
+def test_libcosim_sets_the_profile_through_the_integer_index(cnc: sim.Unpacked, structure: sim.Unpacked,
+                                                             tmp_path: pathlib.Path) -> None:
     """libcosim ignores Enumerations: the Integer machine.profileIndex bound in the SSP selects the
     trapezoid there, equal to the own master setting the Enumeration, and unlike the default."""
     from cnc_motion_sim.ssp import make_ssp
-    ssp_ = make_ssp(out=tmp_path / "trapezoid.ssp", cnc_params={"machine.profileIndex": 5})
+    ssp_ = make_ssp(tmp_path / "trapezoid.ssp", CNC_FMU, STRUCTURE_FMU, cnc_params={"machine.profileIndex": 5})
     own_ = cosim.cosim_slaves(cnc, structure, cnc_params={"machine.profile": "trapezoid"}, stop_time=T, grid="ns")
     lib = cosim.cosim_libcosim(ssp_, stop_time=T)
     _compare(own_, lib, "libcosim (profileIndex 5)")
@@ -92,17 +96,17 @@ def test_libcosim_sets_the_profile_through_the_integer_index(cnc, structure, tmp
     assert not np.array_equal(default["cnc.path.feed"], lib["cnc.path.feed"][:len(default["time"])])
 
 
-def test_fmpy_ssp_equals_own_master(own, ssp):
+def test_fmpy_ssp_equals_own_master(own: dict[str, Any], ssp: pathlib.Path) -> None:
     _compare(own, cosim.cosim_fmpy_ssp(ssp, stop_time=T), "fmpy.ssp")
 
 
-def test_libcosim_equals_own_master(own_ns, ssp):
+def test_libcosim_equals_own_master(own_ns: dict[str, Any], ssp: pathlib.Path) -> None:
     """libcosim counts time in integer ns and passes h = t(k+1) − t(k) in seconds, which differs from
     1e-3 by ±1 ulp at most steps; on that same time grid the own master gives identical signals."""
     _compare(own_ns, cosim.cosim_libcosim(ssp, stop_time=T), "libcosim")
 
 
-def _feedthrough_outputs():
+def _feedthrough_outputs() -> list[str]:
     """Outputs that declare a direct dependency on an input (ModelStructure), as "comp.name"."""
     from fmpy import read_model_description
     out = []
@@ -112,11 +116,11 @@ def _feedthrough_outputs():
     return out
 
 
-def _without_feedthrough(res):
+def _without_feedthrough(res: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in res.items() if k not in _feedthrough_outputs()}
 
 
-def test_ecos_equals_own_master(own, ssp, structure):
+def test_ecos_equals_own_master(own: dict[str, Any], ssp: pathlib.Path, structure: sim.Unpacked) -> None:
     """A third importer, Ecos (ecospy): it sums its time in floating point (the communication points
     drift by ulps, which the FMUs accept) and steps by exactly 1 ms, so on the exact grid every output
     without direct feed-through equals the own master's bit for bit. Ecos samples after applying the
@@ -144,8 +148,10 @@ def test_ecos_equals_own_master(own, ssp, structure):
     assert moving >= 2, "the frame accelerates along at least two axes in the first 1.5 s"
 
 
-def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp, corpus):
-    """Ecos on a real CAM program (Pessoles' linear path, its first 3 s: the rapid and five cutting moves) with the trapezoid law chosen
+def test_ecos_runs_a_corpus_program_as_the_own_master(cnc: sim.Unpacked, structure: sim.Unpacked,
+                                                      ssp: pathlib.Path, corpus: pathlib.Path) -> None:
+    """Ecos on a real CAM program (Pessoles' linear path, its first 3 s: the rapid and five cutting
+    moves) with the trapezoid law chosen
     through the Integer twin machine.profileIndex, two-way with 1 kg on the frame: every output
     without direct feed-through bit for bit as the own master setting the Enumeration."""
     program = (corpus / "pessoles_linear.ngc").read_text()
@@ -160,7 +166,7 @@ def test_ecos_runs_a_corpus_program_as_the_own_master(cnc, structure, ssp, corpu
     _compare(own_, _without_feedthrough(ecos), "Ecos (pessoles_linear, trapezoid)")
 
 
-def test_outputs_insensitive_to_ulp_step_jitter(own, own_ns):
+def test_outputs_insensitive_to_ulp_step_jitter(own: dict[str, Any], own_ns: dict[str, Any]) -> None:
     """A step of 1 ms ± 1 ulp (libcosim's grid) must not change the physics: positions to 1 nm,
     following errors to 0.1 µm, forces to 1e-6 of their peak."""
     worst = {}
@@ -183,7 +189,7 @@ def test_outputs_insensitive_to_ulp_step_jitter(own, own_ns):
 TABLES = {f"{a}.couplingMass": 50.0 for a in "xyz"}  # the default axes' table mass on the frame
 
 
-def test_two_way_coupling_stable_at_1ms(cnc, structure):
+def test_two_way_coupling_stable_at_1ms(cnc: sim.Unpacked, structure: sim.Unpacked) -> None:
     """With the tables' mass on the frame on all three axes the two-way loop (loadForce back to the
     axes) must stay bounded at the 1 ms Jacobi step: drive forces within twice the one-way ones."""
     one = cosim.cosim_slaves(cnc, structure, structure_params=TABLES, stop_time=2.0, two_way=False)
@@ -198,11 +204,12 @@ def test_two_way_coupling_stable_at_1ms(cnc, structure):
 
 
 STOPS = "G21 G90 G17 G61\nG1 X30 F4000\nG4 P0.25\nG1 Y20\nG4 P0.25\nG1 X0 Y0\nG4 P0.25\nG1 Z-5 F2000\nM30\n"
-RESIDUAL = {}
+RESIDUAL: dict[str, dict[str, Any]] = {}
 
 
 @pytest.mark.parametrize("program", ["default", "stops"])
-def test_residual_vibration_lower_than_trapezoid(cnc, structure, profiles, program):
+def test_residual_vibration_lower_than_trapezoid(cnc: sim.Unpacked, structure: sim.Unpacked, profiles: list[str],
+                                                program: str) -> None:
     """Residual vibration of the frame after each standstill of the command (RMS of |deflection| in
     0.2 s windows), driven by the axes one-way: the measure of the command profile, independent of
     the stability of the loadForce loop tested above. `stops`: exact stops and dwells."""

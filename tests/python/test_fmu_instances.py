@@ -1,5 +1,7 @@
 """FMU instances: state get/set/serialize round trips, repeated reset cycles, parallel instances."""
 import math
+from collections.abc import Callable
+from typing import Any
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -10,11 +12,14 @@ import cnc_motion_sim as sim
 H = 1e-3
 
 
-def drive_inputs(u):
+Inputs = Callable[[float, sim.Slave], None]
+
+
+def drive_inputs(u: sim.Unpacked) -> Inputs:
     """Deterministic inputs for either FMU: loads/forces as sines, override 1, no hold."""
     reals = [v.name for v in u.md.modelVariables if v.causality == "input" and v.type == "Real"]
 
-    def apply(t, s):
+    def apply(t: float, s: sim.Slave) -> None:
         for k, n in enumerate(reals):
             if n == "feedOverride":
                 s.set(n, 1.0)
@@ -23,12 +28,12 @@ def drive_inputs(u):
     return apply
 
 
-def outputs(u):
+def outputs(u: sim.Unpacked) -> list[str]:
     return [v.name for v in u.md.modelVariables
             if v.causality == "output" and v.type in ("Real", "Integer", "Boolean")]
 
 
-def advance(s, u, n, inputs):
+def advance(s: sim.Slave, u: sim.Unpacked, n: int, inputs: Inputs) -> Any:
     read = s.reader(outputs(u))
     rows = []
     for _ in range(n):
@@ -39,11 +44,11 @@ def advance(s, u, n, inputs):
 
 
 @pytest.fixture(params=["cnc", "structure"])
-def fmu(request, cnc, structure):
+def fmu(request: pytest.FixtureRequest, cnc: sim.Unpacked, structure: sim.Unpacked) -> sim.Unpacked:
     return {"cnc": cnc, "structure": structure}[request.param]
 
 
-def test_fmu_state_round_trip(fmu):
+def test_fmu_state_round_trip(fmu: sim.Unpacked) -> None:
     u = fmu
     assert u.md.coSimulation.canGetAndSetFMUstate and u.md.coSimulation.canSerializeFMUstate
     inputs = drive_inputs(u)
@@ -74,7 +79,7 @@ def test_fmu_state_round_trip(fmu):
     assert np.array_equal(first, other)
 
 
-def test_reset_cycles_identical(fmu):
+def test_reset_cycles_identical(fmu: sim.Unpacked) -> None:
     u = fmu
     inputs = drive_inputs(u)
     s = sim.Slave(u, "r")
@@ -89,12 +94,12 @@ def test_reset_cycles_identical(fmu):
         assert np.array_equal(runs[0], r)
 
 
-def _run_default(cnc, kind):
+def _run_default(cnc: sim.Unpacked, kind: str) -> Any:
     r = sim.run_cnc(cnc, {"machine.profile": kind})
     return np.column_stack([r[n] for n in sim.cnc_outputs(cnc)])
 
 
-def test_parallel_instances_in_threads(cnc):
+def test_parallel_instances_in_threads(cnc: sim.Unpacked) -> None:
     kinds = ["scurve7", "trapezoid", "scurve7", "quintic"]
     serial = {k: _run_default(cnc, k) for k in set(kinds)}
     with ThreadPoolExecutor(max_workers=4) as pool:

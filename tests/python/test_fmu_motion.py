@@ -1,22 +1,25 @@
 """CncMotion.fmu in fmpy: programs run to the end, command within the machine's limits for every
 profile kind (the items of the FMU's `machine.profile`), smooth (continuous acceleration, bounded
 jerk), feed hold and override, bad programs."""
+import pathlib
 import re
 import subprocess
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
 
 import cnc_motion_sim as sim
-from cnc_motion_sim.paths import ROOT, corpus_programs
+from repo import DEFAULT_PROGRAM, EXAMPLES, corpus_programs
 
 REL = 1e-9
 # Issue 14: seed 003's pocket with cutter compensation (G41.1 D10, G54, T/D/M6) through `program`.
 CORPUS_PROGRAMS = corpus_programs()
-PROGRAMS = [sim.DEFAULT_PROGRAM] + CORPUS_PROGRAMS + [ROOT / "examples" / "seed003_pocket_g41.ngc"]
+PROGRAMS = [DEFAULT_PROGRAM] + CORPUS_PROGRAMS + [EXAMPLES / "seed003_pocket_g41.ngc"]
 
 
-def limits(cnc):
+def limits(cnc: sim.Unpacked) -> dict[str, dict[str, float]]:
     """Axis limits (SI) from the start values of the parameters."""
     out = {}
     for a in sim.AXES:
@@ -25,14 +28,14 @@ def limits(cnc):
     return out
 
 
-def test_corpus_is_there():
+def test_corpus_is_there() -> None:
     assert len(CORPUS_PROGRAMS) >= 2, "corpus/*.ngc missing"
 
 
-_cache = {}
+_cache: dict[tuple[str, str], dict[str, Any]] = {}
 
 
-def run(cnc, program, kind):
+def run(cnc: sim.Unpacked, program: pathlib.Path, kind: str) -> dict[str, Any]:
     key = (str(program), kind)
     if key not in _cache:
         params = {"program": program.read_text(), "machine.profile": kind}
@@ -42,7 +45,7 @@ def run(cnc, program, kind):
     return _cache[key]
 
 
-def last_point(program):
+def last_point(program: pathlib.Path) -> list[float]:
     """The last programmed X Y Z (mm) of a program made of absolute G0/G1/G2/G3 moves."""
     pos = {"X": 0.0, "Y": 0.0, "Z": 0.0}
     for line in program.read_text().splitlines():
@@ -53,7 +56,7 @@ def last_point(program):
 
 
 @pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
-def test_program_runs_to_finished(cnc, program):
+def test_program_runs_to_finished(cnc: sim.Unpacked, program: pathlib.Path) -> None:
     res = run(cnc, program, "scurve7")
     assert res["status.finished"][-1] == 1.0
     end = [res[f"{a}.command.position"][-1] * 1e3 for a in sim.AXES]
@@ -64,7 +67,7 @@ def test_program_runs_to_finished(cnc, program):
 
 
 @pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
-def test_command_within_axis_limits(cnc, program, profile):
+def test_command_within_axis_limits(cnc: sim.Unpacked, program: pathlib.Path, profile: str) -> None:
     res = run(cnc, program, profile)
     lim = limits(cnc)
     for a in sim.AXES:
@@ -76,7 +79,8 @@ def test_command_within_axis_limits(cnc, program, profile):
 
 
 @pytest.mark.parametrize("program", PROGRAMS, ids=lambda p: p.stem)
-def test_acceleration_continuous_jerk_bounded(cnc, program, jerk_limited_profile):
+def test_acceleration_continuous_jerk_bounded(cnc: sim.Unpacked, program: pathlib.Path,
+                                              jerk_limited_profile: str) -> None:
     """Between two ticks a changes by at most ∫|j| ≤ J·T: no acceleration steps anywhere."""
     res = run(cnc, program, jerk_limited_profile)
     lim = limits(cnc)
@@ -91,9 +95,9 @@ def test_acceleration_continuous_jerk_bounded(cnc, program, jerk_limited_profile
         assert acc[0] == 0.0 and acc[-1] == 0.0
 
 
-def test_trapezoid_has_acceleration_steps(cnc):
+def test_trapezoid_has_acceleration_steps(cnc: sim.Unpacked) -> None:
     """The baseline really is a trapezoid: acceleration jumps (what the smoothness test guards against)."""
-    res = run(cnc, sim.DEFAULT_PROGRAM, "trapezoid")
+    res = run(cnc, DEFAULT_PROGRAM, "trapezoid")
     lim = limits(cnc)
     period = float(cnc.vars["machine.interpolationPeriod"].start)
     jumps = max(np.max(np.abs(np.diff(res[f"{a}.command.acceleration"]))) for a in "xy")
@@ -103,8 +107,9 @@ def test_trapezoid_has_acceleration_steps(cnc):
 LINE = "G21 G90 G17\nG1 X100 F3000\nM30\n"  # 100 mm at 50 mm/s
 
 
-def _line_run(cnc, inputs=None, override=None):
-    params = {"program": LINE}
+def _line_run(cnc: sim.Unpacked, inputs: Callable[[float, sim.Slave], None] | None = None,
+              override: float | None = None) -> dict[str, Any]:
+    params: dict[str, Any] = {"program": LINE}
     if override is not None:
         params["feedOverride"] = override
     return sim.run_cnc(cnc, params, inputs=inputs, names=[
@@ -112,13 +117,13 @@ def _line_run(cnc, inputs=None, override=None):
         "path.feed", "status.finished"])
 
 
-def test_feed_override_halves_cruise_feed(cnc):
+def test_feed_override_halves_cruise_feed(cnc: sim.Unpacked) -> None:
     full = _line_run(cnc)
     half = _line_run(cnc, override=0.5)
     lim = limits(cnc)
     period = float(cnc.vars["machine.interpolationPeriod"].start)
 
-    def cruise(r):  # the feed in the middle of the move
+    def cruise(r: dict[str, Any]) -> float:  # the feed in the middle of the move
         t = r["time"]
         return np.median(r["path.feed"][(t > 0.3 * r["t_finished"]) & (t < 0.7 * r["t_finished"])])
 
@@ -134,10 +139,10 @@ def test_feed_override_halves_cruise_feed(cnc):
     assert np.max(half["path.feed"]) <= 0.025 * (1 + 1e-9), np.max(half["path.feed"])
 
 
-def test_feed_hold_stops_smoothly_stays_and_resumes(cnc):
+def test_feed_hold_stops_smoothly_stays_and_resumes(cnc: sim.Unpacked) -> None:
     t_hold, t_release = 0.8, 1.6
 
-    def inputs(t, s):
+    def inputs(t: float, s: sim.Slave) -> None:
         s.set("feedHold", t_hold - 1e-9 <= t < t_release - 1e-9)
 
     free = _line_run(cnc)
@@ -171,7 +176,7 @@ BAD = {
 
 
 @pytest.mark.parametrize("case", BAD)
-def test_bad_program_error_at_initialization(cnc, cli, tmp_path, case):
+def test_bad_program_error_at_initialization(cnc: sim.Unpacked, cli: str, tmp_path: pathlib.Path, case: str) -> None:
     from fmpy.fmi1 import FMICallException
     text = BAD[case]
     prog = tmp_path / f"{case}.ngc"
@@ -197,7 +202,8 @@ def test_bad_program_error_at_initialization(cnc, cli, tmp_path, case):
         s.fmu.freeInstance()
 
 
-def test_simulate_fmu_defaults_equal_cli_run(fmus, cli, tmp_path):
+def test_simulate_fmu_defaults_equal_cli_run(fmus: tuple[pathlib.Path, pathlib.Path], cli: str,
+                                             tmp_path: pathlib.Path) -> None:
     """fmpy's simulate_fmu with the FMU's defaults runs the shipped default program to
     status.finished, and every tick's command equals the CLI's `run` of the same program and
     machine to 1e-12 m."""
@@ -206,7 +212,7 @@ def test_simulate_fmu_defaults_equal_cli_run(fmus, cli, tmp_path):
     res = simulate_fmu(str(fmus[0]), output_interval=1e-3, output=names)
     assert res["status.finished"][-1], "default stop time covers the default program"
     csv = tmp_path / "ticks.csv"
-    out = subprocess.run([cli, "run", str(ROOT / "resources" / "default.ngc"), "--csv", str(csv)],
+    out = subprocess.run([cli, "run", str(DEFAULT_PROGRAM), "--csv", str(csv)],
                          capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     ticks = np.genfromtxt(csv, delimiter=",", names=True)

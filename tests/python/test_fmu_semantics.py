@@ -3,6 +3,9 @@ status, reset, free and FMU-state calls are allowed; non-finite times are refuse
 float drift is accepted; the status inquiries answer; the declared ModelStructure dependencies are
 exactly the direct feed-through seen by a set-and-get probe; FMU states are compact."""
 import math
+import pathlib
+from collections.abc import Callable
+from typing import Any
 
 import pytest
 from fmpy.fmi1 import FMICallException
@@ -15,20 +18,20 @@ DO_STEP_STATUS, LAST_SUCCESSFUL_TIME, TERMINATED = 0, 2, 3
 
 
 @pytest.fixture(params=["cnc", "structure"])
-def fmu(request, cnc, structure):
+def fmu(request: pytest.FixtureRequest, cnc: sim.Unpacked, structure: sim.Unpacked) -> sim.Unpacked:
     return {"cnc": cnc, "structure": structure}[request.param]
 
 
-def status_of(call, *args):
+def status_of(call: Callable[..., Any], *args: Any) -> int:
     """fmi2Status of a call (fmpy raises on anything above Warning)."""
     try:
         call(*args)
         return fmi2OK
     except FMICallException as e:
-        return e.status
+        return int(e.status)
 
 
-def started(u, name, steps=20, stop_time=None):
+def started(u: sim.Unpacked, name: str, steps: int = 20, stop_time: float | None = None) -> sim.Slave:
     s = sim.Slave(u, name)
     s.fmu.setupExperiment(startTime=0.0, stopTime=stop_time)
     s.fmu.enterInitializationMode()
@@ -39,15 +42,15 @@ def started(u, name, steps=20, stop_time=None):
     return s
 
 
-def an_input(u):
+def an_input(u: sim.Unpacked) -> Any:
     return next(v for v in u.md.modelVariables if v.causality == "input" and v.type == "Real")
 
 
-def outputs(u):
+def outputs(u: sim.Unpacked) -> list[str]:
     return [v.name for v in u.md.modelVariables if v.causality == "output"]
 
 
-def assert_terminal_error(s, u, want_log):
+def assert_terminal_error(s: sim.Slave, u: sim.Unpacked, want_log: str) -> None:
     """The instance answered fmi2Error: it now refuses everything but get/status/reset/free."""
     assert any(want_log in m for _, _, m in s.log), s.log[-3:]
     f = s.fmu
@@ -69,19 +72,19 @@ def assert_terminal_error(s, u, want_log):
     s.free()
 
 
-def test_bad_value_reference_is_terminal(fmu):
+def test_bad_value_reference_is_terminal(fmu: sim.Unpacked) -> None:
     s = started(fmu, "badvr")
     assert status_of(s.fmu.getReal, [999_999]) == fmi2Error
     assert_terminal_error(s, fmu, "unknown value reference 999999")
 
 
-def test_wrong_communication_point_is_terminal(fmu):
+def test_wrong_communication_point_is_terminal(fmu: sim.Unpacked) -> None:
     s = started(fmu, "badt")
     assert status_of(s.fmu.doStep, s.time + 0.5, H) == fmi2Error
     assert_terminal_error(s, fmu, "is not the slave's time")
 
 
-def test_step_past_stop_time_is_terminal(fmu):
+def test_step_past_stop_time_is_terminal(fmu: sim.Unpacked) -> None:
     s = started(fmu, "stop", steps=0, stop_time=10 * H)
     for _ in range(10):
         s.step(H)
@@ -90,7 +93,7 @@ def test_step_past_stop_time_is_terminal(fmu):
 
 
 @pytest.mark.parametrize("t", [math.nan, math.inf, -math.inf])
-def test_non_finite_time_is_refused(fmu, t):
+def test_non_finite_time_is_refused(fmu: sim.Unpacked, t: float) -> None:
     s = started(fmu, "nan")
     before = s.fmu.getRealStatus(LAST_SUCCESSFUL_TIME)
     assert status_of(s.fmu.doStep, t, H) == fmi2Error
@@ -98,13 +101,13 @@ def test_non_finite_time_is_refused(fmu, t):
     assert_terminal_error(s, fmu, "currentCommunicationPoint must be finite")
 
 
-def test_non_finite_step_size_is_refused(fmu):
+def test_non_finite_step_size_is_refused(fmu: sim.Unpacked) -> None:
     s = started(fmu, "nanh")
     assert status_of(s.fmu.doStep, s.time, math.nan) == fmi2Error
     assert_terminal_error(s, fmu, "communicationStepSize must be > 0")
 
 
-def test_float_drift_of_the_master_is_accepted(fmu):
+def test_float_drift_of_the_master_is_accepted(fmu: sim.Unpacked) -> None:
     """An Ecos-like master: t accumulated by t += h, ending one ulp-drift away from k·h, and a
     master that is off by 0.5 µs (below the 1 µs tolerance) still steps."""
     s = started(fmu, "drift", steps=0)
@@ -119,7 +122,7 @@ def test_float_drift_of_the_master_is_accepted(fmu):
     s.fmu.freeInstance()
 
 
-def test_status_inquiries(fmu):
+def test_status_inquiries(fmu: sim.Unpacked) -> None:
     s = started(fmu, "status", steps=30)
     f = s.fmu
     assert f.getRealStatus(LAST_SUCCESSFUL_TIME) == pytest.approx(30 * H, abs=1e-15)
@@ -135,7 +138,7 @@ def test_status_inquiries(fmu):
     f.freeInstance()
 
 
-def test_saved_state_recovers_from_error(fmu):
+def test_saved_state_recovers_from_error(fmu: sim.Unpacked) -> None:
     s = started(fmu, "recover", steps=10)
     state = s.fmu.getFMUstate()
     assert status_of(s.fmu.doStep, 99.0, H) == fmi2Error
@@ -146,7 +149,7 @@ def test_saved_state_recovers_from_error(fmu):
     s.free()
 
 
-def declared_dependencies(u):
+def declared_dependencies(u: sim.Unpacked) -> dict[str, set[str]]:
     """{output name: set of input names} from <ModelStructure><Outputs>."""
     deps = {}
     for unknown in u.md.outputs:
@@ -155,14 +158,14 @@ def declared_dependencies(u):
     return deps
 
 
-def test_declared_dependencies(cnc, structure):
+def test_declared_dependencies(cnc: sim.Unpacked, structure: sim.Unpacked) -> None:
     assert all(d == set() for d in declared_dependencies(cnc).values())
     want = {f"{a}.acceleration": {f"{a}.driveForce"} for a in "xyz"}
     got = {k: v for k, v in declared_dependencies(structure).items() if v}
     assert got == want
 
 
-def test_feedthrough_probe_matches_the_declaration(fmu):
+def test_feedthrough_probe_matches_the_declaration(fmu: sim.Unpacked) -> None:
     """Change one input at a time at a communication point and read every output without a step:
     exactly the declared dependents move."""
     s = started(fmu, "probe", steps=300)
@@ -183,7 +186,7 @@ def test_feedthrough_probe_matches_the_declaration(fmu):
     s.free()
 
 
-def test_serialized_state_is_compact_and_checked(fmu):
+def test_serialized_state_is_compact_and_checked(fmu: sim.Unpacked) -> None:
     s = started(fmu, "size", steps=500)
     state = s.fmu.getFMUstate()
     blob = s.fmu.serializeFMUstate(state)
@@ -201,7 +204,7 @@ def test_serialized_state_is_compact_and_checked(fmu):
     s.fmu.freeInstance()
 
 
-def test_declared_ranges_are_enforced(fmu):
+def test_declared_ranges_are_enforced(fmu: sim.Unpacked) -> None:
     """Every declared min/max is checked on set (outside → fmi2Error naming the range), NaN never
     passes, and the bounds themselves are accepted by the layer (the model may refuse 0 where it
     needs a positive number)."""
@@ -225,20 +228,20 @@ def test_declared_ranges_are_enforced(fmu):
     s.fmu.freeInstance()
 
 
-def _rss_kb():
+def _rss_kb() -> int:
     with open("/proc/self/statm") as f:
         import os
         return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") // 1024
 
 
-def test_instantiate_free_cycles_do_not_leak(fmu):
+def test_instantiate_free_cycles_do_not_leak(fmu: sim.Unpacked) -> None:
     """1000 cycles of instantiate, initialize, 5 steps, an FMU state left unfreed, an fmi2Error,
     fmi2FreeInstance on one loaded library: no crash, and the process does not grow
     (FreeInstance frees the states it handed out)."""
     s = sim.Slave(fmu, "cycles")
     f = s.fmu
 
-    def cycle():
+    def cycle() -> None:
         f.fmi2FreeInstance(f.component)
         f.instantiate(callbacks=s._callbacks, loggingOn=False)
         f.setupExperiment(startTime=0.0)
@@ -258,7 +261,7 @@ def test_instantiate_free_cycles_do_not_leak(fmu):
     assert grown < 1024, f"resident set grew by {grown} kB over 1000 cycles"
 
 
-def test_resources_in_a_folder_with_spaces_percent_and_unicode(cnc, tmp_path):
+def test_resources_in_a_folder_with_spaces_percent_and_unicode(cnc: sim.Unpacked, tmp_path: pathlib.Path) -> None:
     """fmpy passes fmuResourceLocation as pathlib's as_uri(): percent-encoded spaces, '%', '#' and
     UTF-8. CncMotion finds its default programFile there (the resources folder decoded exactly once)
     and runs the shipped program's first move."""

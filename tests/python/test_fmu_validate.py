@@ -1,18 +1,19 @@
 """Both FMUs pass fmpy's validation and fmu-manipulation-toolbox's checker without findings."""
+import pathlib
 import subprocess
 import sys
 
 import pytest
 from fmpy.validation import validate_fmu
 
-from cnc_motion_sim.paths import ROOT
+from repo import FMU_DIR
 
 FMUS = ["CncMotion", "MachineStructure"]
 
 
 @pytest.mark.parametrize("name", FMUS)
-def test_fmpy_validate_clean(fmus, name):
-    path = ROOT / "target" / "fmu" / f"{name}.fmu"
+def test_fmpy_validate_clean(fmus: tuple[pathlib.Path, pathlib.Path], name: str) -> None:
+    path = FMU_DIR / f"{name}.fmu"
     problems = validate_fmu(str(path))
     assert problems == [], "\n".join(problems)
     # The command-line tool says the same (exit 0).
@@ -21,9 +22,9 @@ def test_fmpy_validate_clean(fmus, name):
 
 
 @pytest.mark.parametrize("name", FMUS)
-def test_fmutool_check_clean(fmus, name):
-    path = ROOT / "target" / "fmu" / f"{name}.fmu"
-    fmutool = ROOT / ".venv" / "bin" / "fmutool"
+def test_fmutool_check_clean(fmus: tuple[pathlib.Path, pathlib.Path], name: str) -> None:
+    path = FMU_DIR / f"{name}.fmu"
+    fmutool = pathlib.Path(sys.executable).parent / "fmutool"
     cmd = [str(fmutool)] if fmutool.exists() else [sys.executable, "-m", "fmu_manipulation_toolbox.cli.fmutool"]
     res = subprocess.run(cmd + ["-input", str(path), "-check"], capture_output=True, text=True)
     text = res.stdout + res.stderr

@@ -8,7 +8,7 @@ import pytest
 from ruckig import InputParameter, Result, Ruckig, Trajectory
 
 
-def ruckig_duration(length, v_max, a_max, j_max):
+def ruckig_duration(length: float, v_max: float, a_max: float, j_max: float) -> float:
     otg = Ruckig(1)
     inp = InputParameter(1)
     inp.current_position = [0.0]
@@ -22,10 +22,10 @@ def ruckig_duration(length, v_max, a_max, j_max):
     inp.max_jerk = [j_max]
     traj = Trajectory(1)
     assert otg.calculate(inp, traj) == Result.Working
-    return traj.duration
+    return float(traj.duration)
 
 
-def cases():
+def cases() -> list[tuple[float, float, float, float]]:
     rng = random.Random(20261122)
     out = []
     for _ in range(40):
@@ -39,7 +39,7 @@ def cases():
 
 
 @pytest.mark.parametrize("length,v_max,a_max,j_max", cases())
-def test_scurve7_rest_to_rest_equals_ruckig(cli, length, v_max, a_max, j_max):
+def test_scurve7_rest_to_rest_equals_ruckig(cli: str, length: float, v_max: float, a_max: float, j_max: float) -> None:
     res = subprocess.run([cli, "profile", "--length", repr(length), "--v-max", repr(v_max),
                           "--a-max", repr(a_max), "--j-max", repr(j_max), "--kind", "scurve7", "--json"],
                          capture_output=True, text=True)

@@ -1,8 +1,10 @@
 """The Dask sweep on a 2-worker LocalCluster gives the serial results, case for case."""
+import pathlib
+import cnc_motion_sim as sim
 from cnc_motion_sim import sweep
 
 
-def test_sweep_local_cluster_equals_serial(fmus, tmp_path):
+def test_sweep_local_cluster_equals_serial(fmus: tuple[pathlib.Path, pathlib.Path], tmp_path: pathlib.Path) -> None:
     prog = tmp_path / "short.ngc"
     prog.write_text("G21 G90 G17 G64\nG1 X20 F3000\nG1 Y10\nG0 X0 Y0\nM30\n")
     case_list = sweep.cases([prog], ["scurve7", "trapezoid"], [20000.0, 80000.0])
@@ -14,7 +16,7 @@ def test_sweep_local_cluster_equals_serial(fmus, tmp_path):
     assert t[("scurve7", 20000.0)] > t[("scurve7", 80000.0)]
 
 
-def test_package_zip_for_remote_workers_imports(tmp_path):
+def test_package_zip_for_remote_workers_imports(tmp_path: pathlib.Path) -> None:
     """What `run_dask(scheduler=...)` uploads: the package as a zip that a worker can import from."""
     import os
     import subprocess

@@ -71,7 +71,8 @@ pub(crate) fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<
     };
     let below = min.is_some_and(|m| x < m);
     let above = max.is_some_and(|m| x > m);
-    let bound = |b: Option<f64>| b.map_or("…".into(), |b| b.to_string());
+    let bound = |b: Option<f64>| b.map_or("…".into(), crate::xml::real);
+    let x = crate::xml::real(x);
     (below || above).then(|| format!("{x} out of range ({} … {})", bound(min), bound(max)))
 }
 

@@ -7,6 +7,7 @@ pub mod abi;
 pub mod doc;
 pub mod instance;
 pub mod package;
+pub mod reference;
 pub mod table;
 pub mod units;
 pub mod uri;

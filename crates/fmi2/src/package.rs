@@ -1,29 +1,108 @@
-//! Writing a .fmu: modelDescription.xml, binaries/linux64/<id>.so, resources/, documentation/,
-//! sources/. The archive is reproducible: entries in a fixed order, each with the same fixed
-//! timestamp (1980-01-01, the zip epoch) and permissions, so the same inputs give the same bytes.
+//! Writing a .fmu: modelDescription.xml, binaries/<platform>/<id>.<so|dll> (linux64 and win64),
+//! resources/, documentation/, extra/ (the reference result), sources/. The archive is
+//! reproducible: entries in a fixed order, each with the same fixed timestamp (1980-01-01, the zip
+//! epoch) and permissions, so the same inputs give the same bytes.
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use zip::write::SimpleFileOptions;
 
 /// A file inside the archive: path and bytes.
 pub type Entry = (String, Vec<u8>);
 
+/// A platform the FMU ships a binary for: FMI 2.0 name, Rust target (None: the host build),
+/// shared-library file name from the crate's library name.
+#[derive(Debug)]
+pub struct Platform {
+    pub name: &'static str,
+    pub target: Option<&'static str>,
+    pub library: fn(&str) -> String,
+    pub extension: &'static str,
+}
+
+/// linux64 (the host build) and win64 (cross-compiled with mingw-w64).
+pub const PLATFORMS: [Platform; 2] = [
+    Platform {
+        name: "linux64",
+        target: None,
+        library: |lib| format!("lib{lib}.so"),
+        extension: "so",
+    },
+    Platform {
+        name: "win64",
+        target: Some("x86_64-pc-windows-gnu"),
+        library: |lib| format!("{lib}.dll"),
+        extension: "dll",
+    },
+];
+
+/// The platforms named in a comma-separated list (`linux64,win64`), in [`PLATFORMS`] order.
+pub fn platforms(list: &str) -> Result<Vec<&'static Platform>, String> {
+    let names: Vec<&str> = list.split(',').map(str::trim).filter(|n| !n.is_empty()).collect();
+    if let Some(bad) = names.iter().find(|n| PLATFORMS.iter().all(|p| p.name != **n)) {
+        return Err(format!("unknown platform '{bad}' (known: linux64, win64)"));
+    }
+    Ok(PLATFORMS.iter().filter(|p| names.contains(&p.name)).collect())
+}
+
+/// The built libraries of `lib_name` for `platforms`, found from `profile_dir`
+/// (target/release): the host's there, a cross target's in target/<triple>/release.
+pub fn built_libraries(
+    profile_dir: &Path,
+    lib_name: &str,
+    platforms: &[&'static Platform],
+) -> Result<Vec<(&'static Platform, PathBuf)>, String> {
+    let profile = profile_dir.file_name().map(PathBuf::from).unwrap_or_default();
+    let target_dir = profile_dir.parent().unwrap_or(profile_dir);
+    platforms
+        .iter()
+        .map(|p| {
+            let dir = match p.target {
+                None => profile_dir.to_path_buf(),
+                Some(triple) => target_dir.join(triple).join(&profile),
+            };
+            let path = dir.join((p.library)(lib_name));
+            if path.exists() {
+                Ok((*p, path))
+            } else {
+                let how = match p.target {
+                    None => "cargo build --release --lib".to_string(),
+                    Some(t) => format!("make win64, or cargo build --release --lib --target {t}"),
+                };
+                Err(format!(
+                    "{}: {} not found (build it: {how})",
+                    p.name,
+                    path.display()
+                ))
+            }
+        })
+        .collect()
+}
+
 /// Files of an FMU archive, by path inside the archive.
 pub struct FmuFiles<'a> {
     pub model_identifier: &'a str,
     pub model_description: &'a str,
-    /// The built shared library (cdylib) of the model.
-    pub shared_library: &'a Path,
+    /// The built shared libraries (cdylib) of the model, by platform.
+    pub binaries: Vec<(&'static Platform, PathBuf)>,
     pub resources: Vec<Entry>,
     pub documentation_html: &'a str,
+    /// Files under `extra/` (layered standards: the reference result).
+    pub extra: Vec<Entry>,
     /// The sources the binary is built from (paths relative to `sources/`).
     pub sources: Vec<Entry>,
 }
 
 pub fn write_fmu(path: &Path, files: &FmuFiles) -> Result<(), String> {
-    let lib = std::fs::read(files.shared_library)
-        .map_err(|e| format!("{}: {e}", files.shared_library.display()))?;
+    let mut libs = Vec::new();
+    for (platform, lib) in &files.binaries {
+        let bytes = std::fs::read(lib).map_err(|e| format!("{}: {e}", lib.display()))?;
+        let name = format!(
+            "binaries/{}/{}.{}",
+            platform.name, files.model_identifier, platform.extension
+        );
+        libs.push((name, bytes));
+    }
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     }
@@ -33,14 +112,14 @@ pub fn write_fmu(path: &Path, files: &FmuFiles) -> Result<(), String> {
         .compression_method(zip::CompressionMethod::Deflated)
         .last_modified_time(zip::DateTime::default())
         .unix_permissions(0o644);
-    let mut entries: Vec<(String, &[u8])> = vec![
-        ("modelDescription.xml".into(), files.model_description.as_bytes()),
-        (format!("binaries/linux64/{}.so", files.model_identifier), &lib),
-        (
-            "documentation/index.html".into(),
-            files.documentation_html.as_bytes(),
-        ),
-    ];
+    let mut entries: Vec<(String, &[u8])> =
+        vec![("modelDescription.xml".into(), files.model_description.as_bytes())];
+    entries.extend(libs.iter().map(|(n, b)| (n.clone(), b.as_slice())));
+    entries.push((
+        "documentation/index.html".into(),
+        files.documentation_html.as_bytes(),
+    ));
+    let fixed = entries.len();
     entries.extend(
         files
             .resources
@@ -49,11 +128,17 @@ pub fn write_fmu(path: &Path, files: &FmuFiles) -> Result<(), String> {
     );
     entries.extend(
         files
+            .extra
+            .iter()
+            .map(|(n, b)| (format!("extra/{n}"), b.as_slice())),
+    );
+    entries.extend(
+        files
             .sources
             .iter()
             .map(|(n, b)| (format!("sources/{n}"), b.as_slice())),
     );
-    entries[3..].sort_by(|a, b| a.0.cmp(&b.0));
+    entries[fixed..].sort_by(|a, b| a.0.cmp(&b.0));
     for (name, bytes) in entries {
         zip.start_file(name.as_str(), opts)
             .map_err(|e| format!("{name}: {e}"))?;
@@ -102,15 +187,29 @@ pub fn manifest(text: &str, drop: &[&str], replace: &[(&str, &str)]) -> String {
     replace.iter().fold(out, |s, (from, to)| s.replace(from, to))
 }
 
-/// sources/README.md: how to build the binary for another platform.
-pub fn sources_readme(model_identifier: &str, lib_name: &str) -> Entry {
+/// sources/README.md: exactly how the binaries are built, for another platform too.
+/// `package` is the Cargo package, `lib_name` its library, `rust_version` the least Rust it needs.
+pub fn sources_readme(model_identifier: &str, package: &str, lib_name: &str, rust_version: &str) -> Entry {
+    let id = model_identifier;
     let text = format!(
-        "# Sources of {model_identifier}\n\nRust sources of the FMU's binary (FMI 2.0 allows shipping \
-         the sources; they are Rust, not C, so modelDescription.xml lists no SourceFiles). Build with \
-         a Rust toolchain (1.80 or newer):\n\n```sh\ncargo build --release --lib\n```\n\nand copy \
-         `target/release/lib{lib_name}.so` (`{lib_name}.dll` on Windows, `lib{lib_name}.dylib` on \
-         macOS) into the FMU as `binaries/<platform>/{model_identifier}.<so|dll|dylib>` \
-         (platforms linux64, win64, darwin64).\n"
+        "# Sources of {id}\n\n\
+         The Rust sources of this FMU's binaries: a Cargo workspace (the model crate `{package}` and the \
+         generic FMI 2.0 layer `fmi2`), with the Cargo.lock the shipped binaries were built with. They \
+         are not C sources: modelDescription.xml declares no SourceFiles, and an importer cannot \
+         compile them. They are here to rebuild the binary, or build one for a platform the FMU \
+         does not ship (it ships linux64 and win64).\n\n\
+         Needs Rust {rust_version} or newer (`rust-version` in Cargo.toml; install with rustup) and \
+         access to crates.io.\n\n\
+         linux64, on Linux x86_64:\n\n\
+         ```sh\ncargo build --release --lib -p {package}\n\
+         cp target/release/lib{lib_name}.so ../binaries/linux64/{id}.so\n```\n\n\
+         win64, cross-compiled on Linux (Debian: `apt-get install gcc-mingw-w64-x86-64`), or on \
+         Windows with the same command (MSVC or GNU toolchain); the DLL needs Windows 10 or later:\n\n\
+         ```sh\nrustup target add x86_64-pc-windows-gnu\n\
+         cargo build --release --lib -p {package} --target x86_64-pc-windows-gnu\n\
+         cp target/x86_64-pc-windows-gnu/release/{lib_name}.dll ../binaries/win64/{id}.dll\n```\n\n\
+         Other platforms: the same with their target (`rustup target list`), the library copied to \
+         `binaries/<platform>/{id}.<so|dylib|dll>` (darwin64: `lib{lib_name}.dylib` → `{id}.dylib`).\n"
     );
     ("README.md".into(), text.into_bytes())
 }
@@ -125,14 +224,17 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let lib = dir.join("lib.so");
         std::fs::write(&lib, b"\x7fELF binary").unwrap();
+        let dll = dir.join("m.dll");
+        std::fs::write(&dll, b"MZ binary").unwrap();
         let write = |name: &str, sources: Vec<Entry>| {
             let path = dir.join(name);
             let files = FmuFiles {
                 model_identifier: "M",
                 model_description: "<fmiModelDescription/>",
-                shared_library: &lib,
+                binaries: vec![(&PLATFORMS[0], lib.clone()), (&PLATFORMS[1], dll.clone())],
                 resources: vec![("a.txt".into(), b"a".to_vec())],
                 documentation_html: "<html/>",
+                extra: vec![("ls/manifest.xml".into(), b"<m/>".to_vec())],
                 sources,
             };
             write_fmu(&path, &files).unwrap();
@@ -146,7 +248,32 @@ mod tests {
         assert_eq!(a, b);
         let text = String::from_utf8_lossy(&a);
         assert!(text.find("sources/Cargo.toml").unwrap() < text.find("sources/src/b.rs").unwrap());
+        let at = |name: &str| text.find(name).unwrap_or_else(|| panic!("{name}"));
+        assert!(at("binaries/linux64/M.so") < at("binaries/win64/M.dll"));
+        assert!(at("binaries/win64/M.dll") < at("documentation/index.html"));
+        assert!(at("extra/ls/manifest.xml") < at("resources/a.txt"));
         std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn platforms_and_where_their_libraries_are_built() {
+        let both = platforms("linux64, win64").unwrap();
+        assert_eq!(
+            both.iter().map(|p| p.name).collect::<Vec<_>>(),
+            ["linux64", "win64"]
+        );
+        assert_eq!(platforms("win64").unwrap()[0].extension, "dll");
+        assert!(platforms("linux64,win32").unwrap_err().contains("win32"));
+        let e = built_libraries(Path::new("/nonexistent/target/release"), "m", &both).unwrap_err();
+        assert!(
+            e.starts_with("linux64: /nonexistent/target/release/libm.so not found"),
+            "{e}"
+        );
+        let e = built_libraries(Path::new("/nonexistent/target/release"), "m", &both[1..]).unwrap_err();
+        assert!(
+            e.contains("/nonexistent/target/x86_64-pc-windows-gnu/release/m.dll not found"),
+            "{e}"
+        );
     }
 
     #[test]

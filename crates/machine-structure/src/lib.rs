@@ -87,22 +87,30 @@ enum Slot {
 }
 
 const NO: Option<f64> = None;
-const ZERO: Option<f64> = Some(0.0);
+/// Declared ranges: the ones `ranges` enforces (one source).
+const fn lo(range: (f64, f64)) -> Option<f64> {
+    Some(range.0)
+}
+const fn hi(range: (f64, f64)) -> Option<f64> {
+    Some(range.1)
+}
+use ranges::{COUPLING_MASS_KG as CM, DAMPING as DZ, FREQUENCY_HZ as FHZ, MODAL_MASS_KG as MM};
+const FORCE: (f64, f64) = (-ranges::MAX_DRIVE_FORCE_N, ranges::MAX_DRIVE_FORCE_N);
 
 /// The variables, one row per axis each (see [`fmi2::table::Row`]).
 #[rustfmt::skip]
 const ROWS: &[fmi2::table::Row<Slot>] = &[
-    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(0, 0),   "# mode 1: natural frequency"),
-    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(0, 1),   "# mode 1: damping ratio"),
-    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(0, 2),   "# mode 1: modal mass"),
-    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   ZERO, NO, Slot::Mode(1, 0),   "# mode 2: natural frequency"),
-    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    ZERO, NO, Slot::Mode(1, 1),   "# mode 2: damping ratio"),
-    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Mode(1, 2),   "# mode 2: modal mass"),
-    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   ZERO, NO, Slot::Coupling,     "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
-    ("#.driveForce",      Type::Real, IN,  CONT, "N",    NO,   NO, Slot::Force,        "force of the # drive on the frame"),
-    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,   NO, Slot::Deflection,   "tool-point deflection of the frame along #"),
-    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,   NO, Slot::Acceleration, "frame acceleration along # (direct feed-through of #.driveForce)"),
-    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,   NO, Slot::LoadForce,    "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
+    ("#.mode1.frequency", Type::Real, PAR, FIX,  "Hz",   lo(FHZ),   hi(FHZ), Slot::Mode(0, 0),   "# mode 1: natural frequency"),
+    ("#.mode1.damping",   Type::Real, PAR, FIX,  "1",    lo(DZ),    hi(DZ),  Slot::Mode(0, 1),   "# mode 1: damping ratio"),
+    ("#.mode1.mass",      Type::Real, PAR, FIX,  "kg",   lo(MM),    hi(MM),  Slot::Mode(0, 2),   "# mode 1: modal mass"),
+    ("#.mode2.frequency", Type::Real, PAR, FIX,  "Hz",   lo(FHZ),   hi(FHZ), Slot::Mode(1, 0),   "# mode 2: natural frequency"),
+    ("#.mode2.damping",   Type::Real, PAR, FIX,  "1",    lo(DZ),    hi(DZ),  Slot::Mode(1, 1),   "# mode 2: damping ratio"),
+    ("#.mode2.mass",      Type::Real, PAR, FIX,  "kg",   lo(MM),    hi(MM),  Slot::Mode(1, 2),   "# mode 2: modal mass"),
+    ("#.couplingMass",    Type::Real, PAR, FIX,  "kg",   lo(CM),    hi(CM),  Slot::Coupling,     "mass riding on the frame along # (table); loadForce = −couplingMass·acceleration"),
+    ("#.driveForce",      Type::Real, IN,  CONT, "N",    lo(FORCE), hi(FORCE), Slot::Force,        "force of the # drive on the frame"),
+    ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,        NO,      Slot::Deflection,   "tool-point deflection of the frame along #"),
+    ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,        NO,      Slot::Acceleration, "frame acceleration along # (direct feed-through of #.driveForce)"),
+    ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,        NO,      Slot::LoadForce,    "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
 ];
 
 /// The table expanded; a = Σ (F/m − 2ζω q̇ − ω² q): each axis' acceleration depends directly on
@@ -213,25 +221,38 @@ pub fn model_description() -> String {
     fmi2::model_description::<MachineStructureFmu>()
 }
 
-/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/) and the fmi2 crate.
+/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/), the fmi2 crate and
+/// the lock file.
 pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
     use fmi2::package::{manifest, sources_readme, tree};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("Cargo.toml")).map_err(|e| format!("Cargo.toml: {e}"))?;
     let cargo = manifest(&text, &[], &[("../fmi2", "fmi2")]) + "\n[workspace]\n";
     let fmi2_toml = std::fs::read(root.join("../fmi2/Cargo.toml")).map_err(|e| format!("fmi2: {e}"))?;
+    // The workspace's lock: the versions the shipped binaries were built with (cargo drops the
+    // entries this smaller workspace does not use).
+    let lock = std::fs::read(root.join("../../Cargo.lock")).map_err(|e| format!("Cargo.lock: {e}"))?;
     let mut files = vec![
         ("Cargo.toml".to_string(), cargo.into_bytes()),
+        ("Cargo.lock".to_string(), lock),
         ("fmi2/Cargo.toml".to_string(), fmi2_toml),
-        sources_readme("MachineStructure", "machine_structure"),
+        sources_readme(
+            "MachineStructure",
+            "machine-structure",
+            "machine_structure",
+            env!("CARGO_PKG_RUST_VERSION"),
+        ),
     ];
     files.extend(tree(&root.join("src"), "src")?);
     files.extend(tree(&root.join("../fmi2/src"), "fmi2/src")?);
     Ok(files)
 }
 
-/// Write MachineStructure.fmu from the built shared library `lib`.
-pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
+/// Write MachineStructure.fmu from the built shared libraries (by platform).
+pub fn write_fmu(
+    path: &Path,
+    binaries: Vec<(&'static fmi2::package::Platform, std::path::PathBuf)>,
+) -> Result<(), String> {
     let xml = model_description();
     let doc = fmi2::documentation::<MachineStructureFmu>(
         "<p>Modal model of a machine frame (two modes per direction, exact zero-order-hold \
@@ -239,16 +260,19 @@ pub fn write_fmu(path: &Path, lib: &Path) -> Result<(), String> {
          <code>x.deflection</code>, <code>x.acceleration</code>, <code>x.loadForce</code> (back to \
          CncMotion <code>x.loadForce</code> for two-way coupling). Only <code>x.acceleration</code> \
          depends directly on an input (<code>x.driveForce</code>). Defaults: a small mill (45/120 Hz \
-         in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json.</p>",
+         in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json. \
+         Binaries: linux64 and win64; reference result of the default experiment (no input: at rest) \
+         in <code>extra/org.fmi-standard.fmi-ls-ref/</code>; Rust sources in <code>sources/</code>.</p>",
     );
     fmi2::package::write_fmu(
         path,
         &fmi2::package::FmuFiles {
             model_identifier: "MachineStructure",
             model_description: &xml,
-            shared_library: lib,
+            binaries,
             resources: Vec::new(),
             documentation_html: &doc,
+            extra: fmi2::reference::files::<MachineStructureFmu>(None, 10)?,
             sources: sources()?,
         },
     )

@@ -10,6 +10,7 @@ use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
 use std::process::ExitCode;
 
 mod run;
+mod summary;
 
 const MM: f64 = 1e-3;
 
@@ -62,6 +63,9 @@ enum Command {
     Package {
         #[arg(long, default_value = "target/fmu/CncMotion.fmu")]
         output: String,
+        /// Platforms whose binaries go in (built beforehand: `make win64` for win64).
+        #[arg(long, default_value = "linux64,win64")]
+        platforms: String,
     },
 }
 
@@ -80,7 +84,7 @@ fn main() -> ExitCode {
             json,
         } => profile(length, v_start, v_end, v_max, a_max, j_max, snap, kind, json),
         Command::Run(args) => run::run(&args),
-        Command::Package { output } => package(&output),
+        Command::Package { output, platforms } => package(&output, &platforms),
     }
 }
 
@@ -195,8 +199,8 @@ fn sample_peaks(p: &Profile) -> [f64; 3] {
     peaks
 }
 
-fn package(output: &str) -> ExitCode {
-    match cnc_motion::package::write_fmu(std::path::Path::new(output)) {
+fn package(output: &str, platforms: &str) -> ExitCode {
+    match cnc_motion::package::write_fmu(std::path::Path::new(output), platforms) {
         Ok(()) => {
             println!("{output}");
             ExitCode::SUCCESS

@@ -1,5 +1,6 @@
 //! `cnc-motion run`: a whole program through the engine, tick by tick; summary, CSV, progress.
 
+use crate::summary;
 use clap::Args;
 use cnc_motion::config::Machine;
 use cnc_motion::engine::Engine;
@@ -158,13 +159,17 @@ fn load_machine(path: Option<&str>) -> Result<Machine, String> {
     }
 }
 
-/// A spinner with the line being executed, when stderr is a terminal.
-fn progress_bar() -> Option<ProgressBar> {
+/// A bar over the program's bytes, with percentage and ETA, when stderr is a terminal. The
+/// position is what the reader has read: it runs the look-ahead ahead of the motion, and an O-word
+/// loop takes it back.
+fn progress_bar(program_bytes: u64) -> Option<ProgressBar> {
     std::io::stderr().is_terminal().then(|| {
-        let bar = ProgressBar::new_spinner();
+        let bar = ProgressBar::new(program_bytes.max(1));
         bar.set_style(
-            ProgressStyle::with_template("{spinner} line {pos} {msg}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            ProgressStyle::with_template(
+                "{wide_bar} {percent:>3}% of {total_bytes}  {msg}  elapsed {elapsed}, ETA {eta}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
         bar
     })
@@ -172,7 +177,8 @@ fn progress_bar() -> Option<ProgressBar> {
 
 fn run_inner(args: &RunArgs) -> Result<(), String> {
     // The program is streamed line by line (memory does not grow with its length).
-    std::fs::File::open(&args.program).map_err(|e| format!("{}: {e}", args.program))?;
+    let file = std::fs::File::open(&args.program).map_err(|e| format!("{}: {e}", args.program))?;
+    let program_bytes = file.metadata().map(|m| m.len()).unwrap_or(0);
     let machine = load_machine(args.machine.as_deref())?;
     let source = ProgramSource::File(PathBuf::from(&args.program));
     let mut engine = Engine::new(source, &args.program, &machine)
@@ -185,7 +191,7 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
         }
         None => None,
     };
-    let bar = progress_bar();
+    let bar = progress_bar(program_bytes);
     let mut max = Maxima::default();
     let mut emitted = Differences::new(engine.tick().p, machine.interpolation_period);
     while !engine.finished() && engine.time() < args.max_time {
@@ -197,8 +203,8 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
             w.serialize(row).map_err(|e| format!("{path}: {e}"))?;
         }
         if let Some(bar) = bar.as_ref().filter(|_| max.ticks % 1000 == 0) {
-            bar.set_position(tick.line as u64);
-            bar.set_message(format!("t = {:.3} s", tick.t));
+            bar.set_position(engine.program_offset() as u64);
+            bar.set_message(format!("line {}, t = {:.1} s", tick.line, tick.t));
         }
     }
     if let Some(bar) = bar {
@@ -239,14 +245,71 @@ fn print_summary(args: &RunArgs, machine: &Machine, engine: &Engine, max: &Maxim
     if args.json {
         println!("{summary}");
     } else {
-        let map = summary
-            .as_object()
-            .map(|m| m.iter().collect::<Vec<_>>())
-            .unwrap_or_default();
-        for (key, value) in map {
-            println!("{key:32} {value}");
+        for (label, text) in human_summary(args, machine, engine, max) {
+            println!("{label:22} {text}");
         }
     }
+}
+
+/// The rows of the summary a person reads: rounded, maxima beside the machine's limits.
+fn human_summary(
+    args: &RunArgs,
+    machine: &Machine,
+    engine: &Engine,
+    max: &Maxima,
+) -> Vec<(&'static str, String)> {
+    let tick = engine.tick();
+    let [v_lim, a_lim, j_lim] = summary::axis_limits(machine, MM);
+    let period_ms = machine.interpolation_period * 1e3;
+    let mut rows = vec![
+        ("program", args.program.clone()),
+        (
+            "feed law / corners",
+            format!("{} / {}", machine.profile.name(), machine.corner.name()),
+        ),
+        (
+            "total time",
+            format!(
+                "{:.3} s (motion {:.3} s, {} ticks of {period_ms} ms)",
+                engine.finish_time().unwrap_or(engine.time()),
+                engine.motion_time(),
+                max.ticks
+            ),
+        ),
+        (
+            "path length",
+            format!(
+                "{:.3} mm in {} motion blocks",
+                tick.distance / MM,
+                engine.motion_blocks()
+            ),
+        ),
+        ("end position", summary::per_axis(tick.p.map(|x| x / MM), 3, "mm")),
+        (
+            "max axis velocity",
+            summary::against_limits(max.v.mm(), v_lim, "mm/s"),
+        ),
+        (
+            "max axis acceleration",
+            summary::against_limits(max.a.mm(), a_lim, "mm/s²"),
+        ),
+        (
+            "max axis jerk",
+            summary::against_limits(max.j.mm(), j_lim, "mm/s³"),
+        ),
+    ];
+    if let Some(note) = summary::corner_note(machine.corner) {
+        rows.push(("", format!("({note})")));
+    }
+    if args.servo {
+        let following = max.following_error.mm().map(|v| v * 1e3);
+        rows.push(("max following error", summary::per_axis(following, 2, "µm")));
+        rows.push(("max contour error", format!("{:.2} µm", max.contour / MM * 1e3)));
+        let torque = max.torque.0;
+        let d = summary::decimals(torque.iter().copied().fold(0.0, f64::max));
+        rows.push(("max motor torque", summary::per_axis(torque, d, "N·m")));
+    }
+    rows
 }
 
 /// `FILE:LINE:1: not finished after --max-time …: why` for the line being executed.
@@ -257,12 +320,13 @@ fn not_finished(engine: &Engine, program: &str, max_time: f64) -> String {
             Segment::Dwell { seconds, .. } => {
                 format!("dwelling (G4 P{seconds}), {left:.3} s of the dwell left")
             }
+            // The path feed, not F: in G93 F is 1/min, in G20 in/min.
             _ if block.v_feed * 60.0 / MM < 1.0 => format!(
-                "feed too low: F{} mm/min, {left:.3} s of this block left",
+                "feed too low: {} mm/min along the path, {left:.3} s of this block left",
                 block.v_feed * 60.0 / MM
             ),
             _ => format!(
-                "moving at {:.3} mm/min (programmed F{} mm/min), {left:.3} s of this block left",
+                "moving at {:.3} mm/min (the block's path feed {} mm/min), {left:.3} s of this block left",
                 engine.tick().feed * 60.0 / MM,
                 block.v_feed * 60.0 / MM
             ),

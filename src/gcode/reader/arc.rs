@@ -1,6 +1,7 @@
 //! G2/G3: the centre from I/J/K (end points off the circle within the tolerance are moved
 //! onto it) or from R (LinuxCNC "G2, G3": "Center Format Arcs", "Radius Format Arcs").
 
+use super::words::LineWords;
 use super::{plane_axes, Reader, ARC_TOLERANCE_REL};
 use crate::error::ProgramError;
 use crate::gcode::{check, Block, Motion, Plane};
@@ -8,19 +9,25 @@ use crate::Vec3;
 
 impl Reader {
     /// G2/G3 in the current plane, centre by I/J/K (relative or absolute) or by R.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn arc(
         &self,
         line: u32,
         col: u32,
         clockwise: bool,
         to: Vec3,
-        ijk: [Option<(f64, u32)>; 3],
-        r: Option<(f64, u32)>,
-        p: Option<(f64, u32)>,
+        w: &LineWords,
     ) -> Result<Block, ProgramError> {
+        let (ijk, r, p) = (w.ijk, w.r, w.p);
         let name = if clockwise { "G2" } else { "G3" };
         let n = plane_axes(self.plane).2;
+        if self.plane != Plane::XY && self.rotation().rem_euclid(360.0) != 0.0 {
+            // The rotated XZ / YZ plane is not one of the machine's planes.
+            let msg = format!(
+                "{name} in G18/G19 while the coordinate system is rotated (G10 L2 R{}): only G17 arcs rotate",
+                self.rotation()
+            );
+            return Err(self.error(line, col, msg));
+        }
         // The centre word not in the plane (K in G17, J in G18, I in G19) is an error.
         if let Some((_, c)) = ijk[n] {
             let letter = [b'I', b'J', b'K'][n] as char;
@@ -69,11 +76,24 @@ impl Reader {
         let (a, b, n) = plane_axes(self.plane);
         let from = self.position;
         let mut center = from;
-        center[n] = 0.0;
-        for &i in &[a, b] {
-            let off = ijk[i].map_or(0.0, |(v, _)| v * self.unit);
-            center[i] = if self.arc_absolute { off } else { from[i] + off };
+        let words = ijk.map(|w| w.map_or(0.0, |(v, _)| v * self.unit));
+        if self.arc_absolute {
+            // G90.1: I/J/K are a point of the current system (LinuxCNC "G90.1, G91.1").
+            let mut p = self.to_program(from);
+            for &i in &[a, b] {
+                p[i] = words[i];
+            }
+            let m = self.to_machine(p);
+            (center[a], center[b]) = (m[a], m[b]);
+        } else if self.plane == Plane::XY {
+            let v = self.rotate_vec([words[0], words[1]]);
+            (center[0], center[1]) = (from[0] + v[0], from[1] + v[1]);
+        } else {
+            for &i in &[a, b] {
+                center[i] = from[i] + words[i];
+            }
         }
+        center[n] = 0.0;
         let r1 = (from[a] - center[a]).hypot(from[b] - center[b]);
         let r2 = (to[a] - center[a]).hypot(to[b] - center[b]);
         if r1 <= 0.0 {

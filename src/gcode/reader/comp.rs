@@ -6,7 +6,7 @@
 //! goes to its programmed point. Inside corners: intersection of the offset elements; outside
 //! corners: a transition arc about the corner (G450) or the tangents extended (G451).
 
-use super::comp_geom::{add, cross, dist, dot, intersect, Curve, Elem, P2};
+use super::comp_geom::{add, cross, dist, dot, intersect, Curve, Elem, JOIN, P2};
 use super::{plane_axes, Reader};
 use crate::config::CutterCorner;
 use crate::error::ProgramError;
@@ -17,7 +17,6 @@ use std::collections::VecDeque;
 
 /// Most blocks without motion in the plane (Z moves, dwells, stops) held while compensating.
 const MAX_DEFERRED: usize = 64;
-const EPS: f64 = 1e-9;
 
 /// Compensation mode and the blocks held for the look-ahead (bounded: one element, one entry
 /// move, at most MAX_DEFERRED blocks between).
@@ -75,6 +74,11 @@ impl Reader {
         self.comp.radius = radius;
         self.comp.plane = self.plane;
         Ok(())
+    }
+
+    /// Whether G41/G42 is in force.
+    pub(super) fn comp_on(&self) -> bool {
+        self.comp.side != 0.0
     }
 
     /// Next block after cutter compensation.
@@ -167,18 +171,20 @@ impl Reader {
         Ok(())
     }
 
-    /// An arc whose offset radius on the tool's side vanishes is a gouge.
+    /// An arc whose offset radius on the tool's side vanishes (within JOIN) is a gouge
+    /// (LinuxCNC: "tool radius not less than arc radius with comp").
     fn check_arc_radius(&self, b: &Block, elem: &Elem) -> Result<(), ProgramError> {
         let (side, r) = (self.comp.side, self.comp.radius);
         if side == 0.0 {
             return Ok(());
         }
         if let (Some(rr), Elem::Arc { radius, .. }) = (elem.offset_radius(side, r), elem) {
-            if rr <= EPS {
+            if rr <= JOIN {
+                let relation = if rr < -JOIN { "smaller than" } else { "equal to" };
+                let (a, t) = shown_pair(*radius, r);
                 let m = format!(
-                    "arc radius {:.4} mm is smaller than the tool radius {:.4} mm on this side (gouge)",
-                    radius * 1e3,
-                    r * 1e3
+                    "arc radius {a} mm is {relation} the tool radius {t} mm on the tool's side: \
+                     the tool cannot follow it (gouge)"
                 );
                 return Err(self.error(b.line, 1, m));
             }
@@ -195,9 +201,9 @@ impl Reader {
         let (t1, t2) = (e1.tangent(c), e2.tangent(c));
         let (p1, p2) = (e1.offset_point(c, side, r), e2.offset_point(c, side, r));
         let turn = cross(t1, t2);
-        if dist(p1, p2) < EPS {
+        if dist(p1, p2) < JOIN {
             self.end_held(held, Some(p1));
-        } else if side * turn > 0.0 && turn.abs() > EPS {
+        } else if side * turn > 0.0 {
             let curve = |e: &Elem, t: P2, p: P2| match e.offset_radius(side, r) {
                 None => Curve::Line(p, t),
                 Some(rr) => match *e {
@@ -212,8 +218,8 @@ impl Reader {
             let reachable = x.filter(|x| e1.runs_forward(start1, *x) && e2.runs_forward(*x, end2));
             let Some(x) = reachable else {
                 let m = format!(
-                    "concave corner cannot be reached by the tool (radius {:.4} mm): the offset elements do not meet (gouge)",
-                    r * 1e3
+                    "concave corner cannot be reached by the tool (radius {} mm): the offset elements do not meet (gouge)",
+                    shown_mm(r)
                 );
                 return Err(self.error(next.line, 1, m));
             };
@@ -263,7 +269,7 @@ impl Reader {
         };
         let is_line = |e: &Elem| matches!(e, Elem::Line { .. });
         let line_to = |reader: &mut Reader, p: P2| {
-            if dist(reader.plane_of(reader.comp.tool), p) > EPS {
+            if dist(reader.plane_of(reader.comp.tool), p) > JOIN {
                 let to = reader.point3(p);
                 let m = match held.motion {
                     Motion::Rapid { .. } => Motion::Rapid { to },
@@ -357,5 +363,25 @@ impl Reader {
         }
         self.flush_deferred();
         Ok(())
+    }
+}
+
+/// Two lengths (m) in mm with as many decimals (4 … 9) as tell them apart.
+fn shown_pair(a: f64, b: f64) -> (String, String) {
+    let mut d = 4;
+    while d < 9 && format!("{:.d$}", a * 1e3) == format!("{:.d$}", b * 1e3) && (a - b).abs() > JOIN {
+        d += 1;
+    }
+    (format!("{:.d$}", a * 1e3), format!("{:.d$}", b * 1e3))
+}
+
+/// A length (m) in mm for messages: four decimals, more where they are needed to tell it apart
+/// (a 1 µm tool is 0.001 mm, a 0.3 µm one 3e-4 mm).
+fn shown_mm(m: f64) -> String {
+    let mm = m * 1e3;
+    if mm == 0.0 || mm.abs() >= 1e-3 {
+        format!("{mm:.4}")
+    } else {
+        format!("{mm:.3e}")
     }
 }

@@ -1,5 +1,9 @@
 //! Plane geometry of cutter compensation: offset elements (lines and arcs in the active plane)
-//! and their intersections. Points are (a, b) in the plane's axes (`plane_axes`).
+//! and their intersections. Points are (a, b) in the plane's axes (`plane_axes`). Every
+//! tolerance is a length, JOIN: two offset points nearer than it are one point, an element may
+//! start that far from its ideal start and run that far past its end. An angle tolerance would
+//! be a length that shrinks with the radius (1e-9 rad is 3e-12 m on a 3 mm arc, smaller than the
+//! joins it has to accept: a 1 µm tool refused paths that 0 and 0.1 mm tools run).
 
 use crate::gcode::{Block, Motion};
 
@@ -51,7 +55,7 @@ impl Elem {
         match block.motion {
             Motion::Rapid { to } | Motion::Linear { to } => {
                 let e = [to[a], to[b]];
-                (dist(s, e) > 1e-9).then_some(Elem::Line { start: s, end: e })
+                (dist(s, e) > JOIN).then_some(Elem::Line { start: s, end: e })
             }
             Motion::Arc {
                 to,
@@ -121,11 +125,14 @@ impl Elem {
 
 impl Elem {
     /// Whether the offset element from `p` to `q` runs the programmed way and no longer than
-    /// the programmed element: a line not reversed, an arc not swept beyond its own angle (a
-    /// concave corner eating the whole element is a gouge).
+    /// the programmed element, within JOIN: a line not reversed, an arc not swept beyond its own
+    /// angle (a concave corner eating the whole element is a gouge).
     pub fn runs_forward(&self, p: P2, q: P2) -> bool {
+        if dist(p, q) <= JOIN {
+            return true;
+        }
         match *self {
-            Elem::Line { .. } => dot(sub(q, p), self.tangent(p)) > EPS,
+            Elem::Line { .. } => dot(sub(q, p), self.tangent(p)) > -JOIN,
             Elem::Arc {
                 start,
                 end,
@@ -134,13 +141,16 @@ impl Elem {
                 ..
             } => {
                 let full = sweep(center, start, end, cw);
-                full < EPS || sweep(center, p, q, cw) <= full + 1e-9
+                // Compared as arc lengths on the offset circle.
+                let r = dist(p, center).max(dist(q, center));
+                full * r <= JOIN || sweep(center, p, q, cw) * r <= full * r + JOIN
             }
         }
     }
 }
 
-const EPS: f64 = 1e-9;
+/// The length tolerance of cutter compensation (m): 1 nm.
+pub const JOIN: f64 = 1e-9;
 
 /// Angle swept from `p` to `q` about `c` (0 … 2π), clockwise or not.
 fn sweep(c: P2, p: P2, q: P2, cw: bool) -> f64 {
@@ -171,7 +181,8 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
             let f = sub(*p, *c);
             let b = dot(f, *t);
             let disc = b * b - (dot(f, f) - r * r);
-            if disc < -1e-12 {
+            // The line misses the circle by δ when disc ≈ −2·r·δ: a miss within JOIN touches.
+            if disc < -2.0 * r * JOIN {
                 return None;
             }
             let h = disc.max(0.0).sqrt();
@@ -179,7 +190,7 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
         }
         (Curve::Circle(c1, r1), Curve::Circle(c2, r2)) => {
             let d = dist(*c1, *c2);
-            if d < 1e-12 || d > r1 + r2 + 1e-9 || d < (r1 - r2).abs() - 1e-9 {
+            if d < 1e-12 || d > r1 + r2 + JOIN || d < (r1 - r2).abs() - JOIN {
                 return None;
             }
             let x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);

@@ -45,6 +45,9 @@ struct Open {
     at: Place,
     /// Passes of a `repeat` still to run.
     left: u64,
+    /// An `if` whose `else` branch is running.
+    #[serde(default)]
+    in_else: bool,
 }
 
 /// A subroutine call: where to go back, the caller's locals, the open constructs below it.
@@ -128,9 +131,11 @@ impl Reader {
             Keyword::ElseIf | Keyword::Else => {
                 // The branch before it ran: go past the endif.
                 self.expect_top(line, &head, Kind::If)?;
-                let end = self.find(line, next, &head, &[Keyword::EndIf], "endif")?;
+                let in_else = self.flow.open.last().is_some_and(|o| o.in_else);
+                self.after_else(line, &head, in_else)?;
+                let end = self.past_endif(line, next, &head)?;
                 self.flow.open.pop();
-                self.jump = Some(end.next);
+                self.jump = Some(end);
                 Ok(())
             }
             Keyword::EndIf => {
@@ -214,6 +219,7 @@ impl Reader {
             kind,
             at,
             left,
+            in_else: false,
         });
         Ok(())
     }
@@ -304,6 +310,14 @@ impl Reader {
         if self.flow.subs.len() >= MAX_SUBS {
             return Err(self.error(line, head.col, format!("more than {MAX_SUBS} subroutines")));
         }
+        // A sub without its endsub would run into the lines after it.
+        self.find(
+            found.here.line,
+            found.next,
+            &found.head,
+            &[Keyword::EndSub],
+            "endsub",
+        )?;
         self.flow.subs.insert(head.label.clone(), found.next);
         Ok(found.next)
     }
@@ -346,6 +360,37 @@ impl Reader {
         Ok(())
     }
 
+    /// An `else` or `elseif` met while the `else` branch of its `if` runs: a second `else`, or an
+    /// `elseif` after the `else` (LinuxCNC "O Codes", "Conditional": one `else`, last).
+    fn after_else(&self, line: u32, head: &Head, in_else: bool) -> Result<(), ProgramError> {
+        if !in_else {
+            return Ok(());
+        }
+        let l = head.shown();
+        let msg = match head.keyword {
+            Keyword::Else => format!("a second {l} else in one {l} if"),
+            _ => format!("{l} elseif after {l} else (the else branch comes last)"),
+        };
+        Err(self.error(line, head.col, msg))
+    }
+
+    /// The line after the `endif` of the `if` whose branch just ran, the rest of its chain
+    /// checked on the way: at most one `else`, no `elseif` after it.
+    fn past_endif(&mut self, line: u32, from: Place, head: &Head) -> Result<Place, ProgramError> {
+        let mut seen_else = head.keyword == Keyword::Else;
+        let mut from = from;
+        loop {
+            let keys = [Keyword::ElseIf, Keyword::Else, Keyword::EndIf];
+            let found = self.find(line, from, head, &keys, "endif")?;
+            if found.head.keyword == Keyword::EndIf {
+                return Ok(found.next);
+            }
+            self.after_else(found.here.line, &found.head, seen_else)?;
+            seen_else |= found.head.keyword == Keyword::Else;
+            from = found.next;
+        }
+    }
+
     /// A false `if`/`elseif`: on to the next branch whose condition holds, the `else`, or past
     /// the `endif`.
     fn next_branch(&mut self, line: u32, from: Place, head: &Head) -> Result<(), ProgramError> {
@@ -364,6 +409,9 @@ impl Reader {
                     from = found.next;
                 }
                 Keyword::Else => {
+                    if let Some(top) = self.flow.open.last_mut() {
+                        top.in_else = true;
+                    }
                     self.jump = Some(found.next);
                     return Ok(());
                 }
@@ -496,6 +544,10 @@ impl Reader {
             };
             let text = String::from_utf8_lossy(&buf);
             let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+            if text.trim() == "%" && Some(at.line) != self.opening_percent() {
+                // A closing `%` ends the program (LinuxCNC "File Requirements").
+                return Ok(None);
+            }
             // Block delete: the line is skipped (switch on) or read without its '/'.
             let slash = text.trim_start().strip_prefix('/');
             let deleted = self.nc.block_delete && slash.is_some();

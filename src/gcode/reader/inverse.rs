@@ -1,18 +1,19 @@
 //! G93 inverse-time feed (LinuxCNC "G93, G94, G95"; RS274NGC 3.5.19): F is the inverse of the
 //! move's duration in minutes, so the path feed of a move of length L is L·F per minute. The
 //! length is the programmed one (with G41/G42 the tool centre's path differs by the offset);
-//! the machine's feed cap still applies in the planner.
+//! the machine's feed cap applies. A spline's pieces share its 1/F minutes.
 
-use crate::gcode::{check, Block};
+use crate::gcode::Block;
 use crate::path::Source;
 
-/// Path feed (m/s) of `block` taking 1/F minutes; a move of zero length gets the largest feed.
-pub fn feed(block: &Block, f: f64) -> f64 {
-    let v = length(block) * f / 60.0;
+/// Path feed (m/s) of a move of `length` (m) taking 1/F minutes, capped at `max` (the machine's
+/// largest feed); a move of zero length gets the largest feed.
+pub fn feed(length: f64, f: f64, max: f64) -> f64 {
+    let v = length * f / 60.0;
     if v > 0.0 {
-        v.min(check::MAX_FEED_M_S)
+        v.min(max)
     } else {
-        check::MAX_FEED_M_S
+        max
     }
 }
 

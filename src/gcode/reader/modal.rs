@@ -1,5 +1,6 @@
-//! The G and M words of a line: modal settings applied at once, motion / dwell / stop and the
-//! non-modal codes (G10, G28, G30, G53, G92) returned for `execute`.
+//! The G and M words of a line: modal settings applied at once, motion / stop and the
+//! non-modal codes (group 0: G4, G10, G28, G30, G53, G92, G5.3) returned for `execute`, which
+//! runs them in LinuxCNC's order of execution (G-code overview, "Order of Execution").
 
 use super::{fmt_code, LineCodes, Reader};
 use crate::config::CutterCorner;
@@ -7,6 +8,54 @@ use crate::error::ProgramError;
 use crate::gcode::check;
 use crate::gcode::words::Word;
 use crate::gcode::{PathMode, Plane, StopKind};
+use serde::{Deserialize, Serialize};
+
+/// A motion mode (modal group 1, LinuxCNC "Modal Groups").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Mode {
+    /// G0
+    Rapid,
+    /// G1
+    Linear,
+    /// G2 (true) / G3
+    Arc(bool),
+    /// G5 cubic spline
+    Cubic,
+    /// G5.1 quadratic spline
+    Quadratic,
+    /// G5.2 NURBS block (control points until G5.3)
+    Nurbs,
+    /// G73, G81, G82, G83
+    Cycle(u8),
+}
+
+impl Mode {
+    fn of(code: i64) -> Option<Mode> {
+        Some(match code {
+            0 => Mode::Rapid,
+            10 => Mode::Linear,
+            20 | 30 => Mode::Arc(code == 20),
+            50 => Mode::Cubic,
+            51 => Mode::Quadratic,
+            52 => Mode::Nurbs,
+            730 | 810 | 820 | 830 => Mode::Cycle((code / 10) as u8),
+            _ => return None,
+        })
+    }
+
+    /// The code as written: `G0`, `G5.1`, `G81`.
+    pub fn name(self) -> String {
+        match self {
+            Mode::Rapid => "G0".into(),
+            Mode::Linear => "G1".into(),
+            Mode::Arc(cw) => if cw { "G2" } else { "G3" }.into(),
+            Mode::Cubic => "G5".into(),
+            Mode::Quadratic => "G5.1".into(),
+            Mode::Nurbs => "G5.2".into(),
+            Mode::Cycle(m) => format!("G{m}"),
+        }
+    }
+}
 
 impl Reader {
     /// G and M words: modal settings applied at once, motion / dwell / stop returned.
@@ -45,8 +94,7 @@ impl Reader {
         codes: &mut LineCodes,
     ) -> Result<(), ProgramError> {
         match code {
-            0 | 10 | 20 | 30 | 730 | 810 | 820 | 830 => codes.motion = Some(((code / 10) as u8, col)),
-            40 => codes.dwell = Some(col),
+            c if Mode::of(c).is_some() => codes.motion = Mode::of(c).map(|m| (m, col)),
             170 => self.plane = Plane::XY,
             180 => self.plane = Plane::XZ,
             190 => self.plane = Plane::YZ,
@@ -63,9 +111,12 @@ impl Reader {
                 self.inverse_time = code == 930;
             }
             c if setup_group(c).is_some() => self.setup_code(code, col, codes),
-            // Accepted, no effect on motion: cancel cycles, spindle modes, canned-cycle return
-            // levels.
-            800 => self.motion = None,
+            // G80 cancels the motion mode; spindle modes and canned-cycle return levels do not
+            // move.
+            800 => {
+                self.motion = None;
+                codes.cancel = Some(col);
+            }
             980 | 990 => self.set_retract_to_r(code == 990),
             960 | 970 => {}
             _ => {
@@ -132,7 +183,7 @@ impl Reader {
 /// The modal group (index into the line's groups) of a G code, None for codes without one.
 fn g_group(code: i64) -> Option<usize> {
     match code {
-        0 | 10 | 20 | 30 | 730 | 810 | 820 | 830 | 40 => Some(0),
+        0 | 10 | 20 | 30 | 50 | 51 | 52 | 730 | 800 | 810 | 820 | 830 => Some(0),
         170 | 180 | 190 => Some(1),
         200 | 210 => Some(2),
         900 | 910 => Some(3),
@@ -149,7 +200,8 @@ fn setup_group(code: i64) -> Option<usize> {
         400 | 410 | 411 | 420 | 421 => Some(6),
         430 | 431 | 490 => Some(8),
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Some(9),
-        100 | 280 | 281 | 300 | 301 | 530 | 920..=923 => Some(10),
+        // Group 0 (non-modal): at most one a line.
+        40 | 53 | 100 | 280 | 281 | 300 | 301 | 530 | 920..=923 => Some(10),
         4500 | 4510 => Some(11),
         _ => None,
     }
@@ -160,7 +212,6 @@ fn unsupported_reason(code: i64) -> &'static str {
     match code {
         432 => " (tool length offset from a second tool)",
         330 | 331 | 760 => " (spindle-synchronised motion: this model has no spindle position to follow)",
-        50..=53 => " (splines)",
         380..=389 => " (probing)",
         840..=890 => " (canned cycles other than G73, G81, G82, G83)",
         950 => " (feed per revolution)",

@@ -1,8 +1,9 @@
 //! Tools and coordinate systems in the reader (LinuxCNC G-code reference, "Tool Length Offsets",
 //! "Coordinate Systems", "G10", "G92", "G53", "G28/G30"): every offset is applied here, so the
-//! path stage sees machine coordinates. machine = program + work offset (G54…G59.3) + G92 offset
-//! + tool length (Z).
+//! path stage sees machine coordinates. machine = R·(program + G92 offset) + work offset
+//! (G54…G59.3) + tool length (Z), R the system's XY rotation (`frame.rs`).
 
+use super::words::LineWords;
 use super::{LineCodes, Reader};
 use crate::config::nc::{Tool, MAX_OFFSET_M, MAX_TOOL, MAX_TOOL_RADIUS_M};
 use crate::error::ProgramError;
@@ -45,13 +46,9 @@ pub(super) enum NonModal {
 type Axes = [Option<(f64, u32)>; 3];
 
 impl Reader {
-    /// Offset (m) from program to machine coordinates of axis `i`.
-    pub(super) fn axis_offset(&self, i: usize) -> f64 {
-        self.offset_without_tool(i) + if i == 2 { self.tool.length } else { 0.0 }
-    }
-
-    fn offset_without_tool(&self, i: usize) -> f64 {
-        self.nc.work_offsets[self.work][i] + if self.g92_on { self.g92[i] } else { 0.0 }
+    /// Offset (m) from program to machine Z.
+    pub(super) fn z_offset(&self) -> f64 {
+        self.to_machine([0.0; 3])[2]
     }
 
     /// A whole, non-negative number word (tool, register, L, P) within `max`.
@@ -116,43 +113,51 @@ impl Reader {
         Ok(())
     }
 
-    /// G10, G28.1, G30.1, G53, G92…G92.3; G28/G30 returned for `execute` to move.
+    /// G10, G28.1, G30.1, G53, G92…G92.3, G5.3; G28/G30 returned for `execute` to move.
     pub(super) fn non_modal(
         &mut self,
         line: u32,
         codes: &LineCodes,
-        extra: &Extra,
-        p: Option<(f64, u32)>,
-        r: Option<(f64, u32)>,
-        axes: &Axes,
+        w: &LineWords,
     ) -> Result<NonModal, ProgramError> {
         let Some((code, col)) = codes.nonmodal else {
             return Ok(NonModal::None);
         };
-        let value = |i: usize| axes[i].map(|(v, _)| v * self.unit);
         match code {
-            100 => self.g10(line, col, extra, p, r, axes)?,
+            100 => self.g10(line, col, w)?,
+            53 => self.nurbs_end(line, col)?,
             280 | 300 => return Ok(NonModal::Home(if code == 280 { 0 } else { 1 })),
             281 | 301 => self.nc.home[if code == 281 { 0 } else { 1 }] = self.position,
             530 => return Ok(NonModal::Machine),
             920 => {
-                if axes.iter().all(Option::is_none) {
+                if !w.moves() {
                     return Err(self.error(line, col, "G92 needs at least one axis word"));
                 }
-                // G92: the current point reads the given values (LinuxCNC "G92").
+                // G92: the current point reads the given values (LinuxCNC "G92"): the offset
+                // is what lies between the point in the unshifted system and the values.
+                let mut unshifted = self.to_program(self.position);
                 let old = if self.g92_on { self.g92 } else { [0.0; 3] };
-                let base: [f64; 3] = std::array::from_fn(|i| self.axis_offset(i) - old[i]);
-                self.g92 = std::array::from_fn(|i| match value(i) {
-                    Some(v) => self.position[i] - base[i] - v,
+                for (u, o) in unshifted.iter_mut().zip(old) {
+                    *u += o;
+                }
+                self.g92 = std::array::from_fn(|i| match w.axes[i] {
+                    Some((v, _)) => unshifted[i] - v * self.unit,
                     None => old[i],
                 });
                 self.g92_on = true;
             }
             921 => (self.g92, self.g92_on) = ([0.0; 3], false),
             922 => self.g92_on = false,
-            _ => self.g92_on = true,
+            923 => self.g92_on = true,
+            // G4 (run before) and the codes that leave the axis words to the motion.
+            _ => return Ok(NonModal::None),
         }
-        Ok(NonModal::Consumed)
+        Ok(if matches!(code, 281 | 301 | 921 | 922 | 923) {
+            // These take no axis words: a modal motion runs with them (LinuxCNC "Modal Groups").
+            NonModal::None
+        } else {
+            NonModal::Consumed
+        })
     }
 
     /// A G10 length (program units) in metres within ±max.
@@ -170,73 +175,119 @@ impl Reader {
     }
 
     /// G10 L1 / L10 (tool table: P tool, R radius, Z length) and L2 / L20 (work offsets: P 0…9,
-    /// 0 = the active system), LinuxCNC "G10 L1", "G10 L10", "G10 L2", "G10 L20".
-    fn g10(
-        &mut self,
-        line: u32,
-        col: u32,
-        extra: &Extra,
-        p: Option<(f64, u32)>,
-        r: Option<(f64, u32)>,
-        axes: &Axes,
-    ) -> Result<(), ProgramError> {
-        let Some(l) = extra.l else {
+    /// 0 = the active system; L2 R: the system's XY rotation about Z in degrees), LinuxCNC
+    /// "G10 L1", "G10 L10", "G10 L2", "G10 L20".
+    fn g10(&mut self, line: u32, col: u32, w: &LineWords) -> Result<(), ProgramError> {
+        let Some(l) = w.extra.l else {
             return Err(self.error(line, col, "G10 needs L (1, 2, 10 or 20)"));
         };
-        let Some(p) = p else {
+        let Some(p) = w.p else {
             return Err(self.error(line, col, "G10 needs P (tool or coordinate system number)"));
         };
         match self.whole(line, 'L', l, 20)? {
-            lv @ (1 | 10) => {
-                let n = self.whole(line, 'P', p, MAX_TOOL)?;
-                if n == 0 {
-                    return Err(self.error(line, p.1, "G10 L1/L10: P0 is not a tool"));
-                }
-                let mut tool = self.nc.tools.get(&n).copied().unwrap_or_default();
-                if let Some((v, c)) = r {
-                    if v < 0.0 {
-                        return Err(self.error(line, c, "G10: the tool radius R must not be negative"));
-                    }
-                    tool.radius = self.g10_length(line, v, c, MAX_TOOL_RADIUS_M)?;
-                }
-                if let Some((v, c)) = axes[2] {
-                    let z = self.g10_length(line, v, c, MAX_OFFSET_M)?;
-                    // L10: the length that makes the current position read Z.
-                    tool.length = if lv == 1 {
-                        z
-                    } else {
-                        self.position[2] - self.offset_without_tool(2) - z
-                    };
-                    tool.length = self.g10_length(line, tool.length / self.unit, c, MAX_OFFSET_M)?;
-                }
-                self.nc.tools.insert(n, tool);
+            lv @ (1 | 10) => self.g10_tool(line, lv, p, w),
+            lv @ (2 | 20) => self.g10_system(line, lv, p, w),
+            _ => Err(self.error(
+                line,
+                l.1,
+                format!("unsupported G10 L{} (L1, L2, L10, L20 are)", l.0),
+            )),
+        }
+    }
+
+    /// G10 L1 / L10: tool P's radius R and length Z (L10: the length that makes the current
+    /// position read Z).
+    fn g10_tool(&mut self, line: u32, lv: u32, p: (f64, u32), w: &LineWords) -> Result<(), ProgramError> {
+        let n = self.whole(line, 'P', p, MAX_TOOL)?;
+        if n == 0 {
+            return Err(self.error(line, p.1, "G10 L1/L10: P0 is not a tool"));
+        }
+        let mut tool = self.nc.tools.get(&n).copied().unwrap_or_default();
+        if let Some((v, c)) = w.r {
+            if v < 0.0 {
+                return Err(self.error(line, c, "G10: the tool radius R must not be negative"));
             }
-            lv @ (2 | 20) => {
-                let n = self.whole(line, 'P', p, 9)?;
-                let system = if n == 0 { self.work } else { n as usize - 1 };
-                for (i, a) in axes.iter().enumerate() {
-                    if let Some((v, c)) = *a {
-                        let v = self.g10_length(line, v, c, MAX_OFFSET_M)?;
-                        let g92 = if self.g92_on { self.g92[i] } else { 0.0 };
-                        let tlo = if i == 2 { self.tool.length } else { 0.0 };
-                        let off = if lv == 2 {
-                            v
-                        } else {
-                            self.position[i] - g92 - tlo - v
-                        };
-                        let off = self.g10_length(line, off / self.unit, c, MAX_OFFSET_M)?;
-                        self.nc.work_offsets[system][i] = off;
-                    }
-                }
+            tool.radius = self.g10_length(line, v, c, MAX_TOOL_RADIUS_M)?;
+        }
+        if let Some((v, c)) = w.axes[2] {
+            let z = self.g10_length(line, v, c, MAX_OFFSET_M)?;
+            tool.length = if lv == 1 {
+                z
+            } else {
+                // The program Z without the tool length, minus the value it should read.
+                self.to_program(self.position)[2] + self.tool.length - z
+            };
+            tool.length = self.g10_length(line, tool.length / self.unit, c, MAX_OFFSET_M)?;
+        }
+        self.nc.tools.insert(n, tool);
+        Ok(())
+    }
+
+    /// G10 L2 / L20: the origin (and L2 R, rotation) of system P. L2: the offsets given;
+    /// L20: the offsets that make the current point read the given values in that system, with
+    /// its rotation (LinuxCNC "G10 L20"; R is not allowed with L20, as in LinuxCNC).
+    fn g10_system(&mut self, line: u32, lv: u32, p: (f64, u32), w: &LineWords) -> Result<(), ProgramError> {
+        let n = self.whole(line, 'P', p, 9)?;
+        let system = if n == 0 { self.work } else { n as usize - 1 };
+        if system == self.work && self.comp_on() {
+            let msg = "G10 changes the active coordinate system while cutter compensation is on (G40 first)";
+            return Err(self.error(line, p.1, msg));
+        }
+        let mut off = self.nc.work_offsets[system];
+        let mut rotation = self.nc.work_rotation[system];
+        if let Some((v, c)) = w.r {
+            if lv == 20 {
+                return Err(self.error(line, c, "R (rotation) is not allowed in G10 L20, only in L2"));
             }
-            _ => {
-                return Err(self.error(
-                    line,
-                    l.1,
-                    format!("unsupported G10 L{} (L1, L2, L10, L20 are)", l.0),
-                ))
+            if !v.is_finite() || v.abs() > check::MAX_ROTATION_DEG {
+                let m = format!(
+                    "G10 R{v} out of range (|R| ≤ {} degrees)",
+                    check::MAX_ROTATION_DEG
+                );
+                return Err(self.error(line, c, m));
+            }
+            rotation = v;
+        }
+        let mut given = [None; 3];
+        for (i, a) in w.axes.iter().enumerate() {
+            if let Some((v, c)) = *a {
+                given[i] = Some((self.g10_length(line, v, c, MAX_OFFSET_M)?, c));
             }
         }
+        if lv == 2 {
+            for (i, g) in given.iter().enumerate() {
+                if let Some((v, _)) = g {
+                    off[i] = *v;
+                }
+            }
+        } else {
+            // Where the machine is, and where the point should read in system P:
+            // machine = R·(program + G92) + offset.
+            let g92 = if self.g92_on { self.g92 } else { [0.0; 3] };
+            let here = self.to_program_in(system, self.position);
+            let want: [f64; 3] = std::array::from_fn(|i| given[i].map_or(here[i], |g| g.0));
+            let xy = super::frame::rotate(
+                [want[0] + g92[0], want[1] + g92[1]],
+                super::frame::cos_sin(rotation),
+            );
+            let new = [
+                self.position[0] - xy[0],
+                self.position[1] - xy[1],
+                self.position[2] - self.tool.length - g92[2] - want[2],
+            ];
+            for i in 0..3 {
+                if given[i].is_some() || (i < 2 && (given[0].is_some() || given[1].is_some())) {
+                    off[i] = new[i];
+                }
+            }
+        }
+        for (i, g) in given.iter().enumerate() {
+            if let Some((_, c)) = g {
+                self.g10_length(line, off[i] / self.unit, *c, MAX_OFFSET_M)?;
+            }
+        }
+        self.nc.work_offsets[system] = off;
+        self.nc.work_rotation[system] = rotation;
         Ok(())
     }
 }

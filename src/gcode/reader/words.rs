@@ -8,65 +8,73 @@ use crate::gcode::words::Word;
 /// A word's value and column.
 pub type Located = Option<(f64, u32)>;
 
-/// Axis, centre, R, P and the tool / G10 words of a line.
+/// Axis, polar, centre, R, P and the tool / G10 words of a line.
 #[derive(Default)]
 pub(super) struct LineWords {
     pub axes: [Located; 3],
+    /// `@` distance and `^` angle (LinuxCNC "Polar Coordinates").
+    pub polar: [Located; 2],
     pub ijk: [Located; 3],
     pub r: Located,
     pub p: Located,
     pub extra: Extra,
-    /// F in G93 (per minute), applied to the line's move.
+    /// F as written (G94 applies it at once; G93 to the line's move).
     pub f: Located,
 }
 
+impl LineWords {
+    /// Whether the line has an axis or polar word.
+    pub fn moves(&self) -> bool {
+        self.axes.iter().chain(&self.polar).any(Option::is_some)
+    }
+
+    /// Column of the first axis or polar word.
+    pub fn first_axis(&self) -> Option<u32> {
+        self.axes.iter().chain(&self.polar).flatten().map(|a| a.1).min()
+    }
+}
+
 impl Reader {
-    /// Sort the words of a line; F is applied at once (G94: units per minute).
-    pub(super) fn read_words(&mut self, line: u32, words: &[Word]) -> Result<LineWords, ProgramError> {
+    /// Sort the words of a line (each letter at most once, LinuxCNC's rule); F is applied at
+    /// once in G94 (`f_unit` per minute), capped at the machine's largest feed.
+    pub(super) fn read_words(
+        &mut self,
+        line: u32,
+        words: &[Word],
+        f_unit: f64,
+    ) -> Result<LineWords, ProgramError> {
         let mut out = LineWords::default();
-        let LineWords {
-            axes,
-            ijk,
-            r,
-            p,
-            extra,
-            f,
-        } = &mut out;
         for w in words {
             let v = w.value;
             let located = |m: String| self.error(line, w.col, m);
-            match w.letter {
-                b'X' | b'Y' | b'Z' => {
-                    let i = (w.letter - b'X') as usize;
-                    if axes[i].is_some() {
-                        return Err(self.error(line, w.col, format!("{} given twice", w.letter as char)));
-                    }
-                    check::length(w.letter, v, self.unit).map_err(located)?;
-                    axes[i] = Some((v, w.col));
-                }
-                b'I' | b'J' | b'K' | b'R' => {
+            let slot = match w.letter {
+                b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R' | b'@' => {
                     check::length(w.letter, v, self.unit).map_err(located)?;
                     match w.letter {
-                        b'R' => *r = Some((v, w.col)),
-                        l => ijk[(l - b'I') as usize] = Some((v, w.col)),
+                        b'X' | b'Y' | b'Z' => &mut out.axes[(w.letter - b'X') as usize],
+                        b'I' | b'J' | b'K' => &mut out.ijk[(w.letter - b'I') as usize],
+                        b'R' => &mut out.r,
+                        _ => &mut out.polar[0],
                     }
                 }
-                b'P' => *p = Some((v, w.col)),
+                b'^' => &mut out.polar[1],
+                b'P' => &mut out.p,
                 b'F' if self.inverse_time => {
                     // G93: moves per minute (the move takes 1/F minutes).
                     check::inverse_feed(v).map_err(located)?;
-                    *f = Some((v, w.col));
+                    &mut out.f
                 }
                 b'F' => {
-                    // G94: units per minute.
-                    self.feed = check::feed(v, self.unit).map_err(located)?;
+                    // G94: units per minute; an NC runs any F at most at its largest feed.
+                    self.feed = check::feed(v, f_unit).map_err(located)?.min(self.max_feed);
+                    &mut out.f
                 }
-                b'T' => extra.t = Some((v, w.col)),
-                b'D' => extra.d = Some((v, w.col)),
-                b'H' => extra.h = Some((v, w.col)),
-                b'L' => extra.l = Some((v, w.col)),
-                b'Q' => extra.q = Some((v, w.col)),
-                b'G' | b'M' | b'N' | b'S' => {}
+                b'T' => &mut out.extra.t,
+                b'D' => &mut out.extra.d,
+                b'H' => &mut out.extra.h,
+                b'L' => &mut out.extra.l,
+                b'Q' => &mut out.extra.q,
+                b'G' | b'M' | b'N' | b'S' => continue,
                 b'A' | b'B' | b'C' | b'U' | b'V' | b'W' => {
                     let msg = format!(
                         "unsupported axis word {} (only X, Y, Z are machine axes)",
@@ -78,7 +86,12 @@ impl Reader {
                     let msg = format!("unsupported word {}", other as char);
                     return Err(self.error(line, w.col, msg));
                 }
+            };
+            if slot.is_some() {
+                let msg = format!("{} given twice on one line", w.letter as char);
+                return Err(self.error(line, w.col, msg));
             }
+            *slot = Some((v, w.col));
         }
         Ok(out)
     }

@@ -1,20 +1,27 @@
-//! Writes target/fmu/MachineStructure.fmu (or the path given) from the shared library built beside
-//! this executable.
+//! `package-machine-structure [OUTPUT] [--platforms linux64,win64]`: writes
+//! target/fmu/MachineStructure.fmu (or OUTPUT) from the shared libraries built beside this
+//! executable (linux64) and in target/x86_64-pc-windows-gnu/release (win64, `make win64`).
 
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
 use std::path::PathBuf;
 
 fn main() -> std::process::ExitCode {
-    let out = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "target/fmu/MachineStructure.fmu".into());
+    let mut out = "target/fmu/MachineStructure.fmu".to_string();
+    let mut platforms = "linux64,win64".to_string();
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--platforms" => platforms = args.next().unwrap_or_default(),
+            _ => out = a,
+        }
+    }
     let exe = std::env::current_exe().unwrap_or_default();
-    let lib: PathBuf = exe
-        .parent()
-        .map(|d| d.join("libmachine_structure.so"))
-        .unwrap_or_default();
-    match machine_structure::write_fmu(std::path::Path::new(&out), &lib) {
+    let dir: PathBuf = exe.parent().map(PathBuf::from).unwrap_or_default();
+    let written = fmi2::package::platforms(&platforms)
+        .and_then(|p| fmi2::package::built_libraries(&dir, "machine_structure", &p))
+        .and_then(|libs| machine_structure::write_fmu(std::path::Path::new(&out), libs));
+    match written {
         Ok(()) => {
             println!("{out}");
             std::process::ExitCode::SUCCESS

@@ -1,0 +1,211 @@
+"""The win64 binaries of both FMUs, run for real: Debian's wine64 runs a plain C importer
+(tests/c/fmi2_harness.c, built with mingw-w64: LoadLibrary/GetProcAddress, a variadic logger) on the
+DLLs from the archives, and the same C source built for Linux (dlopen) runs the linux64 libraries
+with the same scripts. Both write every call's status, every log message and every recorded output
+as IEEE-754 bits; the two files must agree:
+
+- statuses, log messages, step counts, Integers and Booleans: identical;
+- Reals: within 1e-12 of each variable's largest magnitude in the run. They are not all bit-identical:
+  the planner's and the drives' sin, cos, atan2, tanh, … come from each platform's C library
+  (glibc on Linux, msvcrt/mingw-w64 on Windows), which round differently in the last bit; the drives
+  carry such a difference into their outputs. The largest relative differences seen are printed
+  (about 1e-15 of a column's range; command positions differ by at most an ulp).
+
+The wine prefix lives in target/wine (created once, ~15-60 s, with Mono/Gecko off).
+"""
+import os
+import shutil
+import struct
+import subprocess
+from pathlib import Path
+from typing import Any, Callable
+
+import pytest
+
+from cnc_motion_sim import Unpacked
+from repo import CORPUS, ROOT
+
+# One scripted call: an operation and its arguments (see _script).
+Command = tuple[Any, ...]
+
+HARNESS = ROOT / "target" / "harness"
+PREFIX = ROOT / "target" / "wine"
+BOUND = 1e-12
+
+
+def _bits(x: float) -> str:
+    return struct.pack(">d", float(x)).hex()
+
+
+def _wine() -> str:
+    for name in ("wine64", "wine"):
+        found = shutil.which(name)
+        if found:
+            return found
+    if os.access("/usr/lib/wine/wine64", os.X_OK):
+        return "/usr/lib/wine/wine64"
+    pytest.fail("wine64 not found: run `make system-deps` (apt-get install wine64)")
+
+
+def _env() -> dict[str, str]:
+    env = dict(os.environ, WINEPREFIX=str(PREFIX), WINEDEBUG="-all", WINEDLLOVERRIDES="mscoree,mshtml=")
+    env.pop("DISPLAY", None)
+    return env
+
+
+@pytest.fixture(scope="session")
+def wine() -> str:
+    """wine64 with a prefix under target/ and the harness built (`make harness`)."""
+    subprocess.run(["make", "-s", "harness"], cwd=ROOT, check=True)
+    wine = _wine()
+    if not (PREFIX / "system.reg").exists():
+        PREFIX.mkdir(parents=True, exist_ok=True)
+        subprocess.run([wine, "wineboot", "-i"], env=_env(), check=True, timeout=600,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    server = Path(wine).with_name("wineserver")
+    if server.exists():  # wait until wineboot's services have settled
+        subprocess.run([str(server), "-w"], env=_env(), timeout=120)
+    return wine
+
+
+def _windows_path(p: Path) -> str:
+    return "Z:" + str(p).replace("/", "\\")
+
+
+def _uri(p: Path, windows: bool) -> str:
+    return "file:///" + (_windows_path(p).replace("\\", "/") if windows else str(p).lstrip("/"))
+
+
+def _script(md: Any, commands: list[Command]) -> str:
+    vars = {v.name: v for v in md.modelVariables}
+
+    def vr(name: str) -> int:
+        return vars[name].valueReference
+
+    lines = [f"guid {md.guid}"]
+    for c in commands:
+        op, *args = c
+        if op == "set":
+            name, value = args
+            kind = vars[name].type
+            if kind == "Real":
+                lines.append(f"real {vr(name)} {_bits(value)}")
+            elif kind in ("Integer", "Enumeration"):
+                lines.append(f"integer {vr(name)} {int(value)}")
+            elif kind == "Boolean":
+                lines.append(f"boolean {vr(name)} {int(bool(value))}")
+            else:
+                lines.append(f"string {vr(name)} " + str(value).replace("\n", "\\n"))
+        elif op == "record":
+            outs = [v for v in md.modelVariables if v.causality == "output"]
+            kinds = {"Real": "r", "Integer": "i", "Boolean": "b"}
+            lines.append("record " + " ".join(f"{kinds[v.type]}:{v.valueReference}" for v in outs))
+        elif op == "until":
+            lines.append(f"until {vr(args[0])} {args[1]} {_bits(args[2])}")
+        elif op == "steps":
+            lines.append(f"steps {args[0]} {_bits(args[1])}")
+        else:
+            lines.append(" ".join([op] + [str(a) for a in args]))
+    return "\n".join(lines) + "\n"
+
+
+def _run(wine: str, unpacked: Unpacked, commands: Callable[[bool], list[Command]], tmp_path: Path,
+         name: str) -> tuple[list[str], list[str]]:
+    """The script through linux64 (native harness) and win64 (wine); both output files."""
+    md, model = unpacked.md, unpacked.md.coSimulation.modelIdentifier
+    resources = Path(unpacked.dir) / "resources"
+    out: dict[bool, list[str]] = {}
+    for windows in (False, True):
+        script = tmp_path / f"{name}_{'win64' if windows else 'linux64'}.txt"
+        script.write_text(_script(md, commands(windows)))
+        result = tmp_path / f"{name}_{'win64' if windows else 'linux64'}.out"
+        if windows:
+            dll = Path(unpacked.dir) / "binaries" / "win64" / f"{model}.dll"
+            cmd = [wine, str(HARNESS / "win64" / "fmi2_harness.exe"), _windows_path(dll),
+                   _uri(resources, True), _windows_path(script), _windows_path(result)]
+            env = _env()
+        else:
+            so = Path(unpacked.dir) / "binaries" / "linux64" / f"{model}.so"
+            cmd = [str(HARNESS / "fmi2_harness"), str(so), _uri(resources, False), str(script), str(result)]
+            env = None
+        res = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600)
+        assert res.returncode == 0, f"{cmd}: {res.returncode}\n{res.stdout}\n{res.stderr}"
+        out[windows] = result.read_text().splitlines()
+    return out[False], out[True]
+
+
+def _compare(linux: list[str], windows: list[str]) -> tuple[int, float]:
+    """Log lines identical; calls: the same status (the scripts differ in their paths); step lines:
+    same counts, Integers/Booleans equal, Reals within BOUND of their column's largest magnitude.
+    Returns (steps, largest relative difference)."""
+    assert len(linux) == len(windows), (len(linux), len(windows))
+    steps = [(a.split()[2:], b.split()[2:]) for a, b in zip(linux, windows) if a.startswith("step ")]
+    for a, b in zip(linux, windows):
+        if a.startswith("call "):
+            assert (a.split()[:2], a.split()[-1]) == (b.split()[:2], b.split()[-1]), (a, b)
+        elif a.startswith("step "):
+            assert a.split()[:2] == b.split()[:2]
+        else:
+            assert a == b
+    def real(h: str) -> float:
+        return float(struct.unpack(">d", bytes.fromhex(h))[0])
+
+    worst = 0.0
+    if steps:
+        for col in range(len(steps[0][0])):
+            ca = [s[0][col] for s in steps]
+            cb = [s[1][col] for s in steps]
+            if len(ca[0]) != 16:  # Integer or Boolean
+                assert ca == cb, f"column {col}"
+                continue
+            x, y = [real(h) for h in ca], [real(h) for h in cb]
+            scale = max(max(abs(v) for v in x), 1e-300)
+            diff = max(abs(p - q) for p, q in zip(x, y))
+            assert diff <= BOUND * scale, f"column {col}: {diff} of {scale}"
+            worst = max(worst, diff / scale)
+    return len(steps), worst
+
+
+POCKET = "seed003_pocket.txt"
+
+
+def test_cnc_motion_win64_equals_linux64(wine: str, cnc: Unpacked, tmp_path: Path) -> None:
+    h = 1e-3
+    def default(windows: bool) -> list[Command]:
+        return [("instantiate", "default"), ("init",), ("record",), ("until", "status.finished", 100000, h),
+                ("terminate",), ("free",)]
+    linux, windows = _run(wine, cnc, default, tmp_path, "default")
+    steps, worst = _compare(linux, windows)
+    assert steps > 5000, steps
+    print(f"\ndefault program, servo on: {steps} steps, largest relative difference {worst:.1e}")
+
+    machine = ROOT / "examples" / "machines" / "seed003_pocket.toml"
+    program = CORPUS / POCKET
+
+    def pocket(windows: bool) -> list[Command]:
+        path = _windows_path(program) if windows else str(program)
+        return [("instantiate", "pocket"), ("set", "machineFile", _uri(machine, windows)),
+                ("set", "programFile", path), ("set", "feedOverride", 1.5), ("init",), ("record",),
+                ("until", "status.finished", 200000, h), ("terminate",), ("free",)]
+
+    linux, windows = _run(wine, cnc, pocket, tmp_path, "pocket")
+    steps, worst = _compare(linux, windows)
+    assert steps > 1000, steps
+    print(f"seed 003 pocket with its machine file: {steps} steps, largest relative difference {worst:.1e}")
+
+    def relation(windows: bool) -> list[Command]:
+        return [("instantiate", "relation"), ("set", "x.servo.ratedTorque", 3.0), ("init",), ("free",)]
+    linux, windows = _run(wine, cnc, relation, tmp_path, "relation")
+    _compare(linux, windows)
+    errors = [line for line in windows if line.startswith("log 3 ")]
+    assert any("x.servo.peakTorque" in e and "x.servo.ratedTorque" in e for e in errors), windows
+
+
+def test_machine_structure_win64_equals_linux64(wine: str, structure: Unpacked, tmp_path: Path) -> None:
+    def commands(windows: bool) -> list[Command]:
+        return [("instantiate", "frame"), ("set", "x.driveForce", 1000.0), ("set", "z.driveForce", -250.0),
+                ("init",), ("record",), ("steps", 2000, 1e-3), ("terminate",), ("free",)]
+    linux, windows = _run(wine, structure, commands, tmp_path, "structure")
+    steps, worst = _compare(linux, windows)
+    assert steps == 2000
+    print(f"\nMachineStructure step response: {steps} steps, largest relative difference {worst:.1e}")
