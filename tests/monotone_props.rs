@@ -187,7 +187,7 @@ fn raised(m: &Machine, raise: Raise, k: f64) -> Machine {
     let mut r = m.clone();
     let each = |r: &mut Machine, axis: Option<usize>, f: &dyn Fn(&mut cnc_motion::config::AxisLimits)| {
         for (i, ax) in r.axes.iter_mut().enumerate() {
-            if axis.map_or(true, |a| a == i) {
+            if axis.is_none_or(|a| a == i) {
                 f(ax);
             }
         }

@@ -343,6 +343,19 @@ const TOP_SHARE: f64 = 0.985;
 /// Share of the jerk a band's pair leaves (of what is left at zero tangential acceleration).
 const BAND_JERK_SHARE: f64 = 0.5;
 
+/// The smallest grid speed q^n m/s (n whole) at or above v > 0: by multiplying and dividing from
+/// 1 m/s (no logarithm, so every platform's libm gives the same grid).
+fn grid_at_or_above(v: f64) -> f64 {
+    let mut g = 1.0;
+    while g < v {
+        g *= BAND_GRID;
+    }
+    while g / BAND_GRID >= v {
+        g /= BAND_GRID;
+    }
+    g
+}
+
 /// Limits and speed bands of a curve (feed/bands.rs). v_0 is where the curve's budget ends: the
 /// speed with no tangential acceleration or jerk left (the centripetal and chain-rule terms take
 /// the axes' acceleration or jerk). The top speed is `TOP_SHARE` of it, within the caps (axis
@@ -379,12 +392,13 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
     if v_top <= 0.0 || !v_top.is_finite() {
         return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
     }
-    let grid = |n: i32| BAND_GRID.powi(n);
-    let n_top = v_top.log(BAND_GRID).ceil() as i32;
-    let mut levels = Vec::new();
-    for n in n_top - MAX_BANDS as i32..n_top {
-        let v = grid(n);
-        if v > 0.0 && v < v_top {
+    // The grid speed at or just above the top, and the ones below it.
+    let above = grid_at_or_above(v_top);
+    let mut levels = Vec::with_capacity(MAX_BANDS);
+    let mut v = above;
+    for _ in 0..MAX_BANDS {
+        v /= BAND_GRID;
+        if v < v_top {
             let (a, j) = pair(v);
             levels.push(Band {
                 v_top: v,
@@ -393,7 +407,7 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
             });
         }
     }
-    let (a, j) = pair(grid(n_top).min(v_curve).max(v_top));
+    let (a, j) = pair(above.min(v_curve).max(v_top));
     let limits = Limits {
         v_max: v_top,
         a_max: a,
