@@ -244,17 +244,28 @@ pub fn ramp_distance(b: &Banded, v1: f64, v2: f64) -> f64 {
 }
 
 /// Largest v ≥ v0 with a ramp between v0 and v within `length` (max_entry and max_exit alike):
-/// the distance grows with v; bracket by doubling, then regula falsi on it as evaluated.
+/// the distance grows with v. Bracketed by the block's top speed first (the look-ahead seldom
+/// needs more), else by doubling; then regula falsi on the distance as evaluated.
 pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
     let v0 = v0.max(0.0);
     let length = length.max(0.0);
-    let d = |v: f64| ramp_distance(b, v0, v);
+    let fits = |v: f64| {
+        let d = ramp_distance(b, v0, v);
+        (d <= length, d - length)
+    };
+    let top = b.top.v_max;
     let mut good = v0;
-    let mut step = v0.max(BRACKET_START);
+    if top.is_finite() && top > v0 {
+        if !fits(top).0 {
+            return falsi(good, top, |v| fits(v).1);
+        }
+        good = top;
+    }
+    let mut step = good.max(BRACKET_START);
     for _ in 0..BRACKET_DOUBLINGS {
-        let hi = v0 + step;
-        if d(hi).is_nan() || d(hi) > length {
-            return falsi(good, hi, |v| d(v) - length);
+        let hi = good + step;
+        if !fits(hi).0 {
+            return falsi(good, hi, |v| fits(v).1);
         }
         good = hi;
         step *= 2.0;

@@ -382,12 +382,17 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
     let v_curve = TOP_SHARE * v_zero;
     let v_top = v_curve.min(v_capped);
     let pair = |v: f64| {
-        let j0 = budget.jerk_with(v, 0.0);
-        let reserved = budget
-            .acceleration_leaving(v, BAND_JERK_SHARE * j0)
-            .min((2.0 * v * j0.max(0.0)).sqrt());
-        let a = budget.acceleration_at(v).min(reserved);
-        (a, budget.jerk_with(v, reserved))
+        let (a_free, j0) = budget.free_at(v);
+        let j_share = BAND_JERK_SHARE * j0;
+        let a_jerk = budget.acceleration_leaving(v, j_share);
+        let a_reach = (2.0 * v * j0.max(0.0)).sqrt();
+        // Reserving for a_jerk leaves exactly j_share (its cell binds); for less, what is left.
+        let (reserved, j) = if a_jerk <= a_reach {
+            (a_jerk, budget.jerk_with(v, a_jerk).max(j_share))
+        } else {
+            (a_reach, budget.jerk_with(v, a_reach))
+        };
+        (a_free.min(reserved), j)
     };
     if v_top <= 0.0 || !v_top.is_finite() {
         return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());

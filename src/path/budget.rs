@@ -63,19 +63,21 @@ impl Budget<'_> {
         (a_c >= self.a_min * slack && j_c >= self.j_min * slack).then_some((a_c, j_c))
     }
 
-    /// The largest tangential acceleration at speed v that the centripetal terms leave (at most
-    /// `a_cap`), whatever it leaves the jerk.
-    pub fn acceleration_at(&self, v: f64) -> f64 {
-        let mut a_c = self.a_cap;
+    /// At speed v: the largest tangential acceleration the centripetal terms leave (at most
+    /// `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk left with no tangential
+    /// acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|, in one pass.
+    pub fn free_at(&self, v: f64) -> (f64, f64) {
+        let (mut a_c, mut j_c) = (self.a_cap, self.j_free);
         for cell in self.cells {
             for (i, ax) in self.machine.axes.iter().enumerate() {
-                let [d1, d2] = [cell[0][i], cell[1][i]];
+                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
                 if d1 > NEGLIGIBLE {
                     a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
+                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v) / d1);
                 }
             }
         }
-        a_c
+        (a_c, j_c)
     }
 
     /// The tangential jerk left at speed v with tangential acceleration up to `a` (at most

@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 /// Sub-intervals of the Taylor bound (guaranteed for any number; more is tighter).
 const BOUND_PIECES: usize = 8;
 /// Sub-intervals of the parameter speed's bound.
-const SPEED_PIECES: usize = 16;
+const SPEED_PIECES: usize = 8;
 
 /// p(u) = start + Σ_{k=1..5} c_k·u^k for u ∈ [0, lambda]; p(lambda) is `end` exactly.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
