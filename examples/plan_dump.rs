@@ -10,6 +10,43 @@ use cnc_motion::plan::Planner;
 use std::collections::VecDeque;
 use std::sync::Arc;
 
+/// With PATH_DUMP set: the path block's limits and speed bands (mm, s).
+fn describe(b: &cnc_motion::path::PathBlock) {
+    if std::env::var_os("PATH_DUMP").is_none() {
+        return;
+    }
+    let l = &b.limits;
+    print!(
+        "  path {:4} L={:9.4} v_max={:8.3} a={:8.1} j={:10.1} v_end_max={:8.3} bands:",
+        b.line,
+        b.segment.length() * 1e3,
+        l.v_max * 1e3,
+        l.a_max * 1e3,
+        l.j_max * 1e3,
+        b.v_end_max * 1e3
+    );
+    for band in b.bands.levels() {
+        print!(
+            " [{:.3} {:.1} {:.1}]",
+            band.v_top * 1e3,
+            band.a_max * 1e3,
+            band.j_max * 1e3
+        );
+    }
+    if let Segment::Chain(c) = &b.segment {
+        print!(" pieces:");
+        for p in &c.pieces {
+            let kind = match p.curve {
+                cnc_motion::path::Curve::Line(_) => "line",
+                cnc_motion::path::Curve::Arc(_) => "arc",
+                cnc_motion::path::Curve::Hermite(_) => "herm",
+            };
+            print!(" {kind}:{:.4}", p.length() * 1e3);
+        }
+    }
+    println!();
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let text = std::fs::read_to_string(&args[1]).expect("program");
@@ -24,10 +61,14 @@ fn main() {
     while let Some(b) = reader.next_block().expect("valid") {
         builder.push(&b, &mut segs);
         for s in segs.drain(..) {
+            describe(&s);
             planner.push(s, &mut out);
         }
     }
     builder.finish(&mut segs);
+    for s in &segs {
+        describe(s);
+    }
     for s in segs.drain(..) {
         planner.push(s, &mut out);
     }

@@ -13,8 +13,9 @@ use crate::valid::{at_most, within};
 // 5: override and hold in the plan stage; 6: the smooth mode's held sub-tolerance moves;
 // 7: reader: motion modes G5…, `%`, splines, work rotations, queued blocks kept, cycle words;
 // 8: seed 004's transition in time (no arc-length table), chains' source-line marks;
-// 9: postcard instead of bincode; time as whole ticks and a phase, no servo clock.
-const STATE_VERSION: u32 = 9;
+// 9: postcard instead of bincode; time as whole ticks and a phase, no servo clock;
+// 10: speed bands on path blocks and the banded S-curve profile.
+const STATE_VERSION: u32 = 10;
 
 /// Fields whose numbers may be more than finite and moderate (see `valid::numbers`): the
 /// planner's "not computed yet" and "no junction limit", a quintic's power coefficients.

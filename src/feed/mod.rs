@@ -13,12 +13,14 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod bands;
 pub mod compose;
 pub mod jerk15;
 pub mod mixed57;
 pub mod quintic;
 pub mod roots;
 pub mod scurve7;
+pub mod scurve7_banded;
 pub mod tolerance;
 pub mod trapezoid;
 
@@ -146,6 +148,8 @@ pub enum Profile {
     Jerk15(jerk15::Jerk15),
     Mixed57(mixed57::Mixed57),
     Trapezoid(trapezoid::Trapezoid),
+    /// scurve7 across speed bands (a block with `Bands`).
+    Scurve7Banded(scurve7_banded::Scurve7Banded),
 }
 
 macro_rules! dispatch {
@@ -156,6 +160,7 @@ macro_rules! dispatch {
             Profile::Jerk15($p) => $e,
             Profile::Mixed57($p) => $e,
             Profile::Trapezoid($p) => $e,
+            Profile::Scurve7Banded($p) => $e,
         }
     };
 }
@@ -179,8 +184,10 @@ impl Profile {
         use crate::valid::{within, MAX_SPEED_M_S};
         let same = matches!(
             (self, kind),
-            (Profile::Scurve7(_), ProfileKind::Scurve7)
-                | (Profile::Quintic(_), ProfileKind::Quintic)
+            (
+                Profile::Scurve7(_) | Profile::Scurve7Banded(_),
+                ProfileKind::Scurve7
+            ) | (Profile::Quintic(_), ProfileKind::Quintic)
                 | (Profile::Jerk15(_), ProfileKind::Jerk15)
                 | (Profile::Mixed57(_), ProfileKind::Mixed57)
                 | (Profile::Trapezoid(_), ProfileKind::Trapezoid)
@@ -189,6 +196,9 @@ impl Profile {
             return Err(format!("a profile of another law than the machine's {kind:?}"));
         }
         let most = crate::valid::MAX_TIME_S;
+        if let Profile::Scurve7Banded(p) = self {
+            p.check_state()?;
+        }
         within("profile duration", self.duration(), 0.0, most)?;
         for t in self.phases() {
             within("profile phase", t, 0.0, most)?;

@@ -126,6 +126,43 @@ pub fn bisect(mut good: f64, mut bad: f64, ok: impl Fn(f64) -> bool) -> f64 {
     good
 }
 
+/// The last point where g ≤ 0 between `good` (g ≤ 0) and `bad` (g > 0), g changing sign once in
+/// between (either way round): regula falsi with the Illinois halving, which converges
+/// superlinearly where bisection halves, bounded; the bracket ends where its ends are adjacent
+/// floats or `BISECTIONS` steps are spent.
+pub fn falsi(mut good: f64, mut bad: f64, g: impl Fn(f64) -> f64) -> f64 {
+    let (mut g_good, mut g_bad) = (g(good), g(bad));
+    if !(g_good <= 0.0 && g_bad > 0.0) {
+        return good;
+    }
+    // Which end moved last: the other end's value is halved when the same one moves twice.
+    let mut last_good = None;
+    for _ in 0..BISECTIONS {
+        let mut x = good - g_good * (bad - good) / (g_bad - g_good);
+        if !(x.is_finite() && (x - good) * (x - bad) < 0.0) {
+            x = 0.5 * (good + bad);
+        }
+        if x == good || x == bad {
+            break;
+        }
+        let gx = g(x);
+        if gx <= 0.0 {
+            (good, g_good) = (x, gx);
+            if last_good == Some(true) {
+                g_bad *= 0.5;
+            }
+            last_good = Some(true);
+        } else {
+            (bad, g_bad) = (x, gx);
+            if last_good == Some(false) {
+                g_good *= 0.5;
+            }
+            last_good = Some(false);
+        }
+    }
+    good
+}
+
 /// Step `w` down towards `floor` (a few ulps at first, doubling) until f(w) ≤ target; f(floor) ≤
 /// target is known, so at most a bounded number of steps. Returns w and f(w).
 pub fn fit_down(mut w: f64, floor: f64, target: f64, f: impl Fn(f64) -> f64) -> (f64, f64) {
@@ -174,5 +211,10 @@ mod tests {
         assert_eq!(fx, x.cbrt());
         assert!(x.cbrt() <= 0.5);
         assert!((bisect(0.0, 1.0, |x| x * x <= 0.25) - 0.5).abs() < 1e-15);
+        // The same crossing by regula falsi, from either side, to adjacent floats.
+        let x = falsi(0.0, 1.0, |x| x * x - 0.25);
+        assert!(x * x <= 0.25 && (x - 0.5).abs() <= 1e-15, "{x}");
+        let x = falsi(1.0, 0.0, |x| 0.25 - x * x);
+        assert!(0.25 - x * x <= 0.0 && (x - 0.5).abs() <= 1e-15, "{x}");
     }
 }

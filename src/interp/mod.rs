@@ -291,6 +291,7 @@ mod tests {
                 v_end_max: v_out,
                 constant_speed: false,
                 before_transition: false,
+                bands: Default::default(),
             },
             v_in,
             v_out,

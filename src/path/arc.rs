@@ -4,6 +4,7 @@
 use super::budget::Budget;
 use super::{add, cross, scale, Geo};
 use crate::config::Machine;
+use crate::feed::bands::{Band, Bands, MAX_BANDS};
 use crate::feed::Limits;
 use crate::gcode::Plane;
 use crate::Vec3;
@@ -274,43 +275,154 @@ pub struct Shares {
 /// for arcs above, the speed never above `v_cap`. The largest v_max whose budget keeps the
 /// tangential shares is solved in closed form (`Budget::max_speed`: each constraint is monotone).
 pub fn curve_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine, shares: Shares) -> Limits {
-    let b = &max_bounds(cells);
-    let v0 = constant_speed_limit(b, machine)
-        .min(chord_error_speed(
-            rho,
-            machine.chord_tolerance,
-            machine.interpolation_period,
-        ))
-        .min(v_cap);
-    let a_share = shares.a_cap;
-    let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
-    for (i, ax) in machine.axes.iter().enumerate() {
-        if b[0][i] > 1e-12 {
-            a_free = a_free.min(ax.max_acceleration / b[0][i]);
-            j_free = j_free.min(ax.max_jerk / b[0][i]);
-        }
-    }
-    if let Some(a) = machine.max_path_acceleration {
-        a_free = a_free.min(a);
-    }
-    if let Some(j) = machine.max_path_jerk {
-        j_free = j_free.min(j);
-    }
-    let budget = Budget {
-        cells,
-        machine,
-        a_cap: a_share * a_free,
-        j_free,
-        a_min: shares.tangential * a_free,
-        j_min: shares.tangential * j_free,
-    };
-    let (v, (a_c, j_c)) = budget.max_speed(v0);
+    let frame = Frame::of(cells, rho, v_cap, machine);
+    let (v, (a_c, j_c)) = frame.budget(cells, machine, shares).max_speed(frame.v0);
     Limits {
         v_max: v,
         a_max: a_c,
         j_max: j_c,
         snap_max: machine.max_snap,
     }
+}
+
+/// What every budget of a curve starts from: the speed bound without tangential motion (axis
+/// limits, chord error, cap) and the free tangential acceleration and jerk A_i/|d1_i|, J_i/|d1_i|.
+struct Frame {
+    v0: f64,
+    a_free: f64,
+    j_free: f64,
+}
+
+impl Frame {
+    fn of(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> Frame {
+        let b = &max_bounds(cells);
+        let v0 = constant_speed_limit(b, machine)
+            .min(chord_error_speed(
+                rho,
+                machine.chord_tolerance,
+                machine.interpolation_period,
+            ))
+            .min(v_cap);
+        let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
+        for (i, ax) in machine.axes.iter().enumerate() {
+            if b[0][i] > 1e-12 {
+                a_free = a_free.min(ax.max_acceleration / b[0][i]);
+                j_free = j_free.min(ax.max_jerk / b[0][i]);
+            }
+        }
+        if let Some(a) = machine.max_path_acceleration {
+            a_free = a_free.min(a);
+        }
+        if let Some(j) = machine.max_path_jerk {
+            j_free = j_free.min(j);
+        }
+        Frame { v0, a_free, j_free }
+    }
+
+    fn budget<'a>(&self, cells: &'a [[Vec3; 3]], machine: &'a Machine, shares: Shares) -> Budget<'a> {
+        Budget {
+            cells,
+            machine,
+            a_cap: shares.a_cap * self.a_free,
+            j_free: self.j_free,
+            a_min: shares.tangential * self.a_free,
+            j_min: shares.tangential * self.j_free,
+        }
+    }
+}
+
+/// A speed above any a curve allows (m/s): where the search for its budget's end starts.
+const CURVE_SPEED_CEILING: f64 = 1e4;
+/// Band tops lie on one grid of speeds for every curve, q^n m/s (n whole), the `MAX_BANDS`
+/// below its top speed: so a higher feed, axis speed or chord tolerance only adds bands above
+/// the ones there were (and drops the lowest, 1/q^MAX_BANDS of the top, where the budget is
+/// nearly whole).
+const BAND_GRID: f64 = 1.259_921_049_894_873_2; // 2^(1/3)
+/// Share of the curve's speed limit (its budget's end) that its top speed may reach.
+const TOP_SHARE: f64 = 0.985;
+/// Share of the jerk a band's pair leaves (of what is left at zero tangential acceleration).
+const BAND_JERK_SHARE: f64 = 0.5;
+
+/// The smallest grid speed q^n m/s (n whole) at or above v > 0: by multiplying and dividing from
+/// 1 m/s (no logarithm, so every platform's libm gives the same grid).
+fn grid_at_or_above(v: f64) -> f64 {
+    let mut g = 1.0;
+    while g < v {
+        g *= BAND_GRID;
+    }
+    while g / BAND_GRID >= v {
+        g /= BAND_GRID;
+    }
+    g
+}
+
+/// Limits and speed bands of a curve (feed/bands.rs). v_0 is where the curve's budget ends: the
+/// speed with no tangential acceleration or jerk left (the centripetal and chain-rule terms take
+/// the axes' acceleration or jerk). The top speed is `TOP_SHARE` of it, within the caps (axis
+/// speeds, chord error, feed); the bands end at the grid speeds below it (`BAND_GRID`). At a
+/// speed v the axes leave A(v) = min_i (A_i − |d2_i|·v²)/|d1_i| and, with acceleration a, the
+/// jerk J(v, a) = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i|: more acceleration leaves less
+/// jerk. A band ending at v reserves the jerk terms of an acceleration a_r that depends on the
+/// jerk limits only — the one leaving `BAND_JERK_SHARE` of J(v, 0), and no more than
+/// sqrt(2·v·J(v, 0)), about the most a ramp within the band reaches — and takes
+/// (min(A(v), a_r), J(v, a_r)): the acceleration grows with every acceleration limit, the jerk
+/// with every jerk limit, and the pair holds at every speed up to v (each term grows with v).
+/// The top band takes its pair at the next grid speed above the top (or at the top, where the
+/// curve itself limits it), so a band's pair does not depend on the caps: a higher cap leaves
+/// every band as it was and adds speed above.
+pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (Limits, Bands) {
+    let frame = Frame::of(cells, rho, v_cap, machine);
+    let zero = Shares {
+        a_cap: 1.0,
+        tangential: 0.0,
+    };
+    let budget = frame.budget(cells, machine, zero);
+    let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
+    let v_capped = budget.max_speed(frame.v0).0;
+    let v_curve = TOP_SHARE * v_zero;
+    let v_top = v_curve.min(v_capped);
+    let pair = |v: f64| {
+        let (a_free, j0) = budget.free_at(v);
+        let j_share = BAND_JERK_SHARE * j0;
+        let a_jerk = budget.acceleration_leaving(v, j_share);
+        let a_reach = (2.0 * v * j0.max(0.0)).sqrt();
+        // Reserving for a_jerk leaves exactly j_share (its cell binds); for less, what is left.
+        let (reserved, j) = if a_jerk <= a_reach {
+            (a_jerk, budget.jerk_with(v, a_jerk).max(j_share))
+        } else {
+            (a_reach, budget.jerk_with(v, a_reach))
+        };
+        (a_free.min(reserved), j)
+    };
+    if v_top <= 0.0 || !v_top.is_finite() {
+        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
+    }
+    // The grid speed at or just above the top, and the ones below it.
+    let above = grid_at_or_above(v_top);
+    let mut levels = Vec::with_capacity(MAX_BANDS);
+    let mut v = above;
+    for _ in 0..MAX_BANDS {
+        v /= BAND_GRID;
+        if v < v_top {
+            let (a, j) = pair(v);
+            levels.push(Band {
+                v_top: v,
+                a_max: a,
+                j_max: j,
+            });
+        }
+    }
+    let (a, j) = pair(above.min(v_curve).max(v_top));
+    let limits = Limits {
+        v_max: v_top,
+        a_max: a,
+        j_max: j,
+        snap_max: machine.max_snap,
+    };
+    if a <= 0.0 || j <= 0.0 {
+        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
+    }
+    (limits, Bands::below(&limits, &levels))
 }
 
 /// Largest per-axis bounds over the cells.

@@ -63,6 +63,53 @@ impl Budget<'_> {
         (a_c >= self.a_min * slack && j_c >= self.j_min * slack).then_some((a_c, j_c))
     }
 
+    /// At speed v: the largest tangential acceleration the centripetal terms leave (at most
+    /// `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk left with no tangential
+    /// acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|, in one pass.
+    pub fn free_at(&self, v: f64) -> (f64, f64) {
+        let (mut a_c, mut j_c) = (self.a_cap, self.j_free);
+        for cell in self.cells {
+            for (i, ax) in self.machine.axes.iter().enumerate() {
+                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
+                if d1 > NEGLIGIBLE {
+                    a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
+                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v) / d1);
+                }
+            }
+        }
+        (a_c, j_c)
+    }
+
+    /// The tangential jerk left at speed v with tangential acceleration up to `a` (at most
+    /// `j_free`): J_c = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i| over the cells.
+    pub fn jerk_with(&self, v: f64, a: f64) -> f64 {
+        let mut j_c = self.j_free;
+        for cell in self.cells {
+            for (i, ax) in self.machine.axes.iter().enumerate() {
+                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
+                if d1 > NEGLIGIBLE {
+                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a) / d1);
+                }
+            }
+        }
+        j_c
+    }
+
+    /// The largest tangential acceleration at speed v that leaves the jerk at least `j`:
+    /// min_i (J_i − |d3_i|·v³ − |d1_i|·j)/(3|d2_i|·v) over the cells (at most `a_cap`).
+    pub fn acceleration_leaving(&self, v: f64, j: f64) -> f64 {
+        let mut a_c = self.a_cap;
+        for cell in self.cells {
+            for (i, ax) in self.machine.axes.iter().enumerate() {
+                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
+                if d1 > NEGLIGIBLE && d2 * v > NEGLIGIBLE {
+                    a_c = a_c.min((ax.max_jerk - d3 * v * v * v - d1 * j) / (3.0 * d2 * v));
+                }
+            }
+        }
+        a_c
+    }
+
     /// The largest v ≤ `v0` with a budget, and the budget there; (0, shares) if none. Per cell and
     /// axis, each condition of `at` bounds v from above:
     /// - moving axis (d1 > 0): (A − d2·v²)/d1 ≥ a_min ⟺ v ≤ sqrt((A − d1·a_min)/d2), and the jerk

@@ -3,7 +3,10 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::{arc::Arc, hermite::Hermite, line::Line, Geo};
+use super::{arc::curve_bands, arc::Arc, hermite::Hermite, line::Line, max_bounds, norm, Geo};
+use crate::config::Machine;
+use crate::feed::bands::Bands;
+use crate::feed::Limits;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -183,5 +186,27 @@ impl Chain {
     pub fn line_at(&self, s: f64) -> u32 {
         let k = self.marks.partition_point(|&(x, _)| x <= s).saturating_sub(1);
         self.marks.get(k).map_or(self.pieces[0].line, |m| m.1)
+    }
+}
+
+/// What the planner needs of a piece or chain: its limits (at every speed up to v_max), the wider
+/// ones at lower speeds, and the speed class by which pieces are grouped into chains.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CurveLimits {
+    pub limits: Limits,
+    pub bands: Bands,
+    pub class: f64,
+}
+
+/// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped
+/// at `v_cap` (`curve_bands`); its class is its top speed.
+pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
+    let k = norm(max_bounds(cells)[1]);
+    let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
+    let (limits, bands) = curve_bands(cells, rho, v_cap, m);
+    CurveLimits {
+        limits,
+        bands,
+        class: limits.v_max,
     }
 }

@@ -130,7 +130,7 @@ impl PathBlock {
         for x in [l.a_max, l.j_max, l.snap_max] {
             within("path limit", x, 0.0, f64::INFINITY)?;
         }
-        Ok(())
+        self.bands.check_state()
     }
 }
 

@@ -4,13 +4,14 @@
 //! shrunk until the transition keeps the tolerance, or None (a stop at the corner).
 
 use super::chain::Curve;
+use super::chain::{piece_limits, CurveLimits};
 use super::corner::REVERSAL_COS;
 use super::hermite::Hermite;
-use super::smooth::{jet_at, piece_limits, Span, MIN_PIECE};
+use super::smooth::{jet_at, Span, MIN_PIECE};
 use super::source::Source;
 use super::{dot, norm, slowest_axis, sub, unit};
 use crate::config::Machine;
-use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
+use crate::feed::{scurve7, BlockRequest, FeedLaw};
 
 /// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -23,10 +24,10 @@ const DEVIATION_SAMPLES: usize = 64;
 /// and the axes' acceleration and jerk (a stop costs at least that; the neighbours' ramps come on
 /// top). A tiny sharp transition allows so little speed that stopping is quicker; a long gentle
 /// one (lines meeting at a rounding kink) runs at the feed.
-fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<Limits> {
+fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<CurveLimits> {
     let mut cells = Vec::new();
     h.cells(|c| cells.push(c));
-    let limits = piece_limits(&cells, h.length(), feed / h.speed_bound().max(1.0), m);
+    let limits = piece_limits(&cells, feed / h.speed_bound().max(1.0), m);
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,
@@ -35,12 +36,12 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<Limits> {
         limits: slowest_axis(m, feed),
     })
     .duration();
-    (h.length() <= limits.v_max * t_stop).then_some(limits)
+    (h.length() <= limits.limits.v_max * t_stop).then_some(limits)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
 /// (stop) at a reversal or when no cut keeps the tolerance.
-pub(super) fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, f64, Hermite, Limits)> {
+pub(super) fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, f64, Hermite, CurveLimits)> {
     let end = jet_at(&held.piece, held.piece.length());
     let start = jet_at(&next.piece, 0.0);
     let (t_in, t_out) = (unit(end.d1), unit(start.d1));

@@ -11,6 +11,7 @@
 //! inserted). Dwell and stop blocks stop the path.
 
 use crate::config::{AxisLimits, CornerMode, Machine};
+use crate::feed::bands::Bands;
 use crate::feed::Limits;
 use crate::gcode::{Block, Motion, PathMode};
 use crate::Vec3;
@@ -242,6 +243,8 @@ pub struct PathBlock {
     /// A constant-speed transition follows, entered at exactly `v_end_max` (which the block
     /// after that transition can always leave: see `PathBuilder::corner`).
     pub before_transition: bool,
+    /// Wider limits at lower speeds (curves: feed/bands.rs); `limits` hold at every speed.
+    pub bands: Bands,
 }
 
 /// Moves shorter than this (m) are dropped.
@@ -350,6 +353,7 @@ impl PathBuilder {
                 v_end_max: 0.0,
                 constant_speed: false,
                 before_transition: false,
+                bands: Bands::default(),
             },
             programmed: length,
             mode: block.path_mode,
@@ -376,6 +380,7 @@ impl PathBuilder {
                 v_end_max: 0.0,
                 constant_speed: false,
                 before_transition: false,
+                bands: Bands::default(),
             });
         }
     }
@@ -504,6 +509,7 @@ impl PathBuilder {
             v_end_max: v,
             constant_speed: true,
             before_transition: false,
+            bands: Bands::default(),
         })
     }
 

@@ -19,17 +19,15 @@
 //!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
 
-use super::chain::{Chain, Curve, Piece};
+use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::transition;
 use super::source::{distance_to_segment, Source};
 use super::source_map;
-use super::{
-    add, cross, curve_limits, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment,
-    Shares,
-};
+use super::{add, cross, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment};
 use crate::config::Machine;
-use crate::feed::{scurve7, BlockRequest, FeedLaw, Limits};
+use crate::feed::bands::{Banded, Bands};
+use crate::feed::{scurve7_banded, FeedLaw, Limits, ProfileKind};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -50,9 +48,8 @@ const CHECK_PIECES: usize = 4;
 const KNOT_LENGTH: f64 = 2e-3;
 /// Moves held at most in one run before its spans are fitted.
 const RUN_MAX: usize = 1024;
-/// Pieces at most in one chain, and the speed ratio within which pieces share a chain.
+/// Pieces at most in one chain.
 const CHAIN_MAX_PIECES: usize = 512;
-const CHAIN_SPEED_RATIO: f64 = 0.7;
 /// Shorter pieces are dropped (m).
 pub(super) const MIN_PIECE: f64 = 1e-12;
 
@@ -144,11 +141,15 @@ pub struct SmoothBuilder {
     cells: Vec<[Vec3; 3]>,
     chain_feed: f64,
     chain_class: f64,
+    /// Time the chain's pieces lose to running at `chain_class` (`loss_if_joined`).
+    chain_loss: f64,
+    /// The limits and bands its first piece ramps within (`joining_pays`).
+    chain_ramps: Option<(Limits, Bands)>,
     chain_straight: bool,
     /// Largest |p'| over the chain: the feed in the chain parameter is the feed over it.
     chain_sigma: f64,
     /// The limits of the chain's only piece, while it has one (computed when it was added).
-    chain_single: Option<Limits>,
+    chain_single: Option<CurveLimits>,
 }
 
 impl SmoothBuilder {
@@ -173,6 +174,8 @@ impl SmoothBuilder {
             cells: Vec::new(),
             chain_feed: 0.0,
             chain_class: 0.0,
+            chain_loss: 0.0,
+            chain_ramps: None,
             chain_straight: true,
             chain_sigma: 1.0,
             chain_single: None,
@@ -391,7 +394,7 @@ impl SmoothBuilder {
         marks: &[(f64, u32)],
         feed: f64,
         stop: bool,
-        known: Option<Limits>,
+        known: Option<CurveLimits>,
         m: &Machine,
         out: &mut Vec<PathBlock>,
     ) {
@@ -400,33 +403,53 @@ impl SmoothBuilder {
             piece.curve.cells(|c| cells.push(c));
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
-            // The speed class is the piece's own v_max with its tangential budget, so a chain
-            // never runs slower than its slowest piece would alone (by more than the ratio).
+            // The speed class is the piece's own v_max; its ramps are within its own limits.
             let own = if straight {
                 None
             } else {
-                Some(known.unwrap_or_else(|| piece_limits(&cells, piece.length(), feed / sigma, m)))
+                Some(known.unwrap_or_else(|| piece_limits(&cells, feed / sigma, m)))
             };
-            let class = match own {
-                Some(l) => l.v_max,
-                None => super::constant_speed_limit(&max_bounds(&cells), m).min(feed / sigma),
+            let (class, ramps) = match &own {
+                Some(l) => (l.class, (l.limits, l.bands.clone())),
+                None => {
+                    let Curve::Line(line) = piece.curve else {
+                        unreachable!("straight pieces are lines")
+                    };
+                    let class = super::constant_speed_limit(&max_bounds(&cells), m).min(feed / sigma);
+                    (class, (line_limits(line.direction(), m), Bands::default()))
+                }
             };
-            let fits = !self.chain.is_empty()
+            let fast = match &self.chain_ramps {
+                Some(chain) if class <= self.chain_class => chain,
+                _ => &ramps,
+            };
+            let joined = if !self.chain.is_empty()
                 && feed == self.chain_feed
                 && straight == self.chain_straight
                 && self.chain.pieces.len() < CHAIN_MAX_PIECES
-                && class >= CHAIN_SPEED_RATIO * self.chain_class
-                && self.chain_class >= CHAIN_SPEED_RATIO * class;
-            if !fits {
+            {
+                joined_loss(
+                    self.chain_loss,
+                    (self.chain.length(), self.chain_class),
+                    (piece.length(), class),
+                    fast,
+                )
+            } else {
+                None
+            };
+            if let Some(loss) = joined {
+                self.chain_loss = loss;
+                self.chain_single = None;
+            } else {
+                self.chain_ramps = Some(ramps);
                 self.close_chain(f64::INFINITY, m, out);
                 self.chain_feed = feed;
                 self.chain_class = class;
+                self.chain_loss = 0.0;
                 self.chain_straight = straight;
                 self.cells.clear();
                 self.chain_sigma = 1.0;
                 self.chain_single = own;
-            } else {
-                self.chain_single = None;
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
@@ -444,21 +467,22 @@ impl SmoothBuilder {
         }
         let chain = std::mem::take(&mut self.chain);
         let first = chain.pieces[0];
-        let (segment, limits, sigma) = match (chain.pieces.len(), first.curve) {
+        let (segment, limits, bands, sigma) = match (chain.pieces.len(), first.curve) {
             (1, Curve::Line(_)) => {
                 let line = Line {
                     start: first.start(),
                     end: first.end(),
                 };
-                (Segment::Line(line), line_limits(line.direction(), m), 1.0)
+                let limits = line_limits(line.direction(), m);
+                (Segment::Line(line), limits, Bands::default(), 1.0)
             }
             _ => {
                 let v_cap = self.chain_feed / self.chain_sigma;
-                let limits = match self.chain_single.take() {
+                let own = match self.chain_single.take() {
                     Some(l) if chain.pieces.len() == 1 => l,
-                    _ => piece_limits(&self.cells, chain.length(), v_cap, m),
+                    _ => piece_limits(&self.cells, v_cap, m),
                 };
-                (Segment::Chain(chain), limits, self.chain_sigma)
+                (Segment::Chain(chain), own.limits, own.bands, self.chain_sigma)
             }
         };
         out.push(PathBlock {
@@ -471,6 +495,7 @@ impl SmoothBuilder {
             v_end_max: v_end_max.min(limits.v_max),
             constant_speed: false,
             before_transition: false,
+            bands,
         });
     }
 }
@@ -488,6 +513,43 @@ pub(super) fn jet_at(piece: &Piece, u: f64) -> Jet {
         d1: g.d1,
         d2: g.d2,
     }
+}
+
+/// Whether a piece of `length` and speed class `class` should join the chain (of `chain_length`
+/// at `chain_class`, whose pieces already lose `chain_loss` to it) rather than start the next
+/// one, by the time each way costs; the chain's loss if it joins. Joined, the faster side runs
+/// at the slower one's speed v_slow over its length L. Apart, it is a block entered and left at
+/// v_slow, reaching what it can of its own speed within its length (planned, within the faster
+/// side's limits and bands `fast`): that saves L/v_slow − T_block. Their junction is then a
+/// block end, where the acceleration is zero: a ramp from rest to the block's peak through it
+/// takes T(0, v_slow) + T(v_slow, v_peak) rather than T(0, v_peak). Joining pays when what the
+/// pieces lose to it, added up over the chain, stays within that. Decided on their times, the
+/// two ways cost about the same where the choice changes with a limit.
+fn joined_loss(
+    chain_loss: f64,
+    (chain_length, chain_class): (f64, f64),
+    (length, class): (f64, f64),
+    fast: &(Limits, Bands),
+) -> Option<f64> {
+    let (v_slow, v_fast) = (chain_class.min(class), chain_class.max(class));
+    if v_fast <= v_slow {
+        return Some(chain_loss);
+    }
+    if v_slow <= 0.0 {
+        return None;
+    }
+    let l_fast = if class < chain_class { chain_length } else { length };
+    let banded = Banded {
+        kind: ProfileKind::Scurve7,
+        top: &fast.0,
+        bands: &fast.1,
+    };
+    let block = scurve7_banded::plan(&banded, l_fast, v_slow, v_slow, v_fast);
+    let loss = chain_loss + (l_fast / v_slow - block.duration()).max(0.0);
+    let t = |a: f64, b: f64| scurve7_banded::ramp_time(&banded, a, b);
+    let v_peak = block.v_peak();
+    let apart = t(0.0, v_slow) + t(v_slow, v_peak) - t(0.0, v_peak);
+    (loss <= apart).then_some(loss)
 }
 
 /// The vertex between two moves is smooth: two short line moves of one feed that turn gently,
@@ -535,44 +597,4 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
     }
     knots.push(run.len());
     knots
-}
-
-/// Tangential shares tried for a chain (see `chain_limits`).
-const TANGENTIAL_SHARES: [f64; 5] = [0.005, 0.02, 0.05, 0.1, 0.25];
-
-/// Time of the 7-phase law from rest to rest over `length` within `limits`.
-fn rest_to_rest(length: f64, limits: &Limits) -> f64 {
-    let req = BlockRequest {
-        length,
-        v_in: 0.0,
-        v_out: 0.0,
-        v_feed: limits.v_max,
-        limits: *limits,
-    };
-    scurve7::plan(&req).duration()
-}
-
-/// Limits of a chain of `length` with derivative bound cells `cells`: of the tangential shares tried, the
-/// one whose limits give the shortest rest-to-rest time over the chain — a long curve is
-/// fastest at the highest speed its curvature allows, a short one needs room to speed up.
-fn chain_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, length: f64, m: &Machine) -> Limits {
-    let time = |l: &Limits| rest_to_rest(length, l);
-    TANGENTIAL_SHARES
-        .iter()
-        .map(|&tangential| {
-            let shares = Shares {
-                a_cap: 1.0,
-                tangential,
-            };
-            curve_limits(cells, rho, v_cap, m, shares)
-        })
-        .min_by(|x, y| time(x).total_cmp(&time(y)))
-        .expect("shares are tried")
-}
-
-/// The limits of a piece (or chain) with bound cells `cells`, of `length`, capped at `v_cap`.
-pub(super) fn piece_limits(cells: &[[Vec3; 3]], length: f64, v_cap: f64, m: &Machine) -> Limits {
-    let k = norm(max_bounds(cells)[1]);
-    let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-    chain_limits(cells, rho, v_cap, length, m)
 }

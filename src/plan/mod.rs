@@ -18,7 +18,9 @@
 mod feed_control;
 pub use feed_control::{FeedControl, Here, Replan, MAX_FEED_OVERRIDE};
 
-use crate::feed::{self, BlockRequest, FeedLaw, Profile, ProfileKind};
+use crate::feed::bands::Banded;
+use crate::feed::scurve7_banded;
+use crate::feed::{BlockRequest, FeedLaw, Profile, ProfileKind};
 use crate::path::{PathBlock, Segment};
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -203,7 +205,7 @@ impl Planner {
         let v_in_stop = if dwell || block.constant_speed {
             0.0
         } else {
-            feed::max_entry(self.kind, block.segment.length(), 0.0, &block.limits)
+            self.banded(&block).max_entry(block.segment.length(), 0.0)
         };
         self.window.push_back(Entry {
             block,
@@ -279,8 +281,7 @@ impl Planner {
             return cap.min(v_exit);
         }
         let length = e.block.segment.length();
-        let lim = &e.block.limits;
-        let slow_to_next = feed::max_entry(self.kind, length, v_exit, lim);
+        let slow_to_next = self.banded(&e.block).max_entry(length, v_exit);
         if may_stop {
             cap.min(slow_to_next.max(e.v_in_stop))
         } else {
@@ -288,7 +289,17 @@ impl Planner {
         }
     }
 
-    /// Forward pass for the front segment: decide its exit, plan its profile, emit it.
+    /// The block's limits and speed bands for this planner's feed law.
+    fn banded<'a>(&self, block: &'a PathBlock) -> Banded<'a> {
+        Banded {
+            kind: self.kind,
+            top: &block.limits,
+            bands: &block.bands,
+        }
+    }
+
+    /// Forward pass for the front segment: decide its exit, plan its profile, emit it (a block
+    /// with speed bands as one part per band it crosses).
     fn emit_front(&mut self, out: &mut VecDeque<Planned>) {
         let Some(e) = self.window.pop_front() else { return };
         let v_next = self.window.front().map_or(0.0, |n| n.v_in_lim);
@@ -296,20 +307,36 @@ impl Planner {
         let target = v_next.min(e.block.v_end_max).max(0.0);
         let length = e.block.segment.length();
         let lim = e.block.limits;
+        let banded = self.banded(&e.block);
         let v_out = if matches!(e.block.segment, Segment::Dwell { .. }) {
             0.0
         } else if e.block.constant_speed {
             v_in
         } else if target >= v_in {
-            target.min(feed::max_exit(self.kind, length, v_in, &lim))
+            target.min(banded.max_exit(length, v_in))
         } else {
-            feed::lowest_exit(self.kind, length, v_in, target, &lim)
+            banded.lowest_exit(length, v_in, target)
         };
         let v_feed = if e.block.constant_speed {
             v_in
         } else {
             e.v_feed.max(v_in).max(v_out)
         };
+        if banded.joined() {
+            let profile = Profile::Scurve7Banded(scurve7_banded::plan(&banded, length, v_in, v_out, v_feed));
+            let v_out = profile.v_end();
+            self.v_prev = v_out;
+            out.push_back(Planned {
+                block: e.block,
+                v_in,
+                v_out,
+                profile,
+            });
+            return;
+        }
+        if !e.block.bands.is_empty() {
+            return self.emit_parts(e.block, v_in, v_out, v_feed, out);
+        }
         let req = BlockRequest {
             length,
             v_in,
@@ -326,6 +353,46 @@ impl Planner {
             v_out,
             profile,
         });
+    }
+
+    /// A banded block as its parts: each a piece of the segment with its band's limits (and no
+    /// bands of its own, so a re-plan from inside it keeps within that band).
+    fn emit_parts(
+        &mut self,
+        block: PathBlock,
+        v_in: f64,
+        v_out: f64,
+        v_feed: f64,
+        out: &mut VecDeque<Planned>,
+    ) {
+        let length = block.segment.length();
+        let parts = self.banded(&block).parts(length, v_in, v_out, v_feed);
+        let last = parts.len().saturating_sub(1);
+        for (k, part) in parts.into_iter().enumerate() {
+            let Some(segment) = block.segment.part(part.s0, part.length) else {
+                continue;
+            };
+            // The last part ends at the block's junction; the others at a band edge.
+            let v_end_max = if k == last {
+                block.v_end_max
+            } else {
+                part.limits.v_max
+            };
+            self.v_prev = part.v_out;
+            out.push_back(Planned {
+                block: PathBlock {
+                    segment,
+                    v_feed: part.v_feed,
+                    limits: part.limits,
+                    v_end_max,
+                    bands: Default::default(),
+                    ..block.clone()
+                },
+                v_in: part.v_in,
+                v_out: part.v_out,
+                profile: part.profile,
+            });
+        }
     }
 }
 
@@ -350,6 +417,7 @@ mod tests {
             v_end_max,
             constant_speed: false,
             before_transition: false,
+            bands: Default::default(),
         }
     }
 

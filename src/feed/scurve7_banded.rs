@@ -1,0 +1,678 @@
+//! The 7-phase S-curve under speed bands (bands.rs): a ramp whose acceleration and jerk limits
+//! change with the speed, without coming back to zero acceleration at the band edges.
+//!
+//! In the phase plane (v, a) a constant-jerk phase is a² = α + 2j·v, a plateau a = const. The
+//! fastest ramp from v_lo to v_hi (a = 0 at both ends; dt = dv/a) has, at every speed, the
+//! largest acceleration both reachable from v_lo and leaving room to come back to zero at v_hi:
+//! a(v) = min(F(v), B(v)), with
+//! - F, the forward envelope: from a = 0 at v_lo, a² grows by 2·J_k per unit of speed in band k,
+//!   at most that band's A_k (cut to the next band's at its edge);
+//! - B, the backward envelope: from a = 0 at v_hi, the same going down in speed — the most
+//!   acceleration from which jerk −J_k brings it to zero at v_hi and below each band's A_k on
+//!   the way.
+//!
+//! Both are continuous where they bind: F drops at a band edge only onto a lower band's A, which
+//! B already keeps below; B rises at an edge only onto a higher band's A, from which F is below.
+//! So min(F, B) is continuous, feasible and, taking the most acceleration at every speed, the
+//! fastest. Each of its pieces is one phase of constant jerk (±J_k or 0); the ramp time and
+//! distance are sums over the phases, in closed form. A speed drop is the time reverse of the rise between the same speeds. A block is ramp,
+//! cruise, ramp as in scurve7.rs; the peak, the largest entry and exit are found by regula falsi on
+//! the ramp distance (increasing in the far speed), bounded.
+
+use super::bands::{Banded, MAX_BANDS};
+use super::roots::falsi;
+use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
+use super::{FeedLaw, Kin};
+use serde::{Deserialize, Serialize};
+
+/// Pieces at most in an envelope: a rise and a plateau per band.
+const MAX_PIECES: usize = 2 * (MAX_BANDS + 1);
+
+/// a² = alpha + beta·v on [v0, v1] (beta = 2·jerk; 0 on a plateau).
+#[derive(Clone, Copy, Debug, Default)]
+struct Piece {
+    v0: f64,
+    v1: f64,
+    alpha: f64,
+    beta: f64,
+}
+
+impl Piece {
+    fn a2(&self, v: f64) -> f64 {
+        (self.alpha + self.beta * v).max(0.0)
+    }
+}
+
+/// A fixed-capacity list of pieces, by increasing speed.
+#[derive(Clone, Copy, Debug)]
+struct Pieces {
+    n: usize,
+    p: [Piece; MAX_PIECES],
+}
+
+impl Pieces {
+    fn new() -> Pieces {
+        Pieces {
+            n: 0,
+            p: [Piece::default(); MAX_PIECES],
+        }
+    }
+    fn push(&mut self, piece: Piece) {
+        debug_assert!(self.n < MAX_PIECES, "room for every piece");
+        if piece.v1 > piece.v0 && self.n < MAX_PIECES {
+            self.p[self.n] = piece;
+            self.n += 1;
+        }
+    }
+    fn as_slice(&self) -> &[Piece] {
+        &self.p[..self.n]
+    }
+}
+
+/// One phase of constant jerk, with the state at its start.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Phase {
+    pub t0: f64,
+    pub tau: f64,
+    pub jerk: f64,
+    pub s0: f64,
+    pub v0: f64,
+    pub a0: f64,
+}
+
+/// A band of the ramp: speeds [floor, top] with acceleration `a` and jerk `j`.
+#[derive(Clone, Copy, Debug)]
+struct Level {
+    floor: f64,
+    top: f64,
+    a: f64,
+    j: f64,
+}
+
+/// The bands crossed between `lo` and `hi`, each with its speeds clipped to [lo, hi].
+fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
+    let mut out = [Level {
+        floor: 0.0,
+        top: 0.0,
+        a: 0.0,
+        j: 0.0,
+    }; MAX_BANDS + 1];
+    let mut n = 0;
+    for k in 0..b.count() {
+        let lim = b.limits(k);
+        let (floor, top) = (b.floor_of(k).max(lo), b.top_of(k).min(hi));
+        if top > floor {
+            out[n] = Level {
+                floor,
+                top,
+                a: lim.a_max,
+                j: lim.j_max,
+            };
+            n += 1;
+        }
+        if b.top_of(k) >= hi {
+            break;
+        }
+    }
+    (out, n)
+}
+
+/// The speed rise lo → hi as constant-jerk pieces in the phase plane, in order, to `take`
+/// (see the module comment).
+fn rise(b: &Banded, lo: f64, hi: f64, mut take: impl FnMut(&Piece)) {
+    let (levels, n) = levels(b, lo, hi);
+    let levels = &levels[..n];
+    // Forward envelope: a² grows by 2·J per unit of speed up to each band's A (cut to it at the
+    // band's floor where the band below allowed more).
+    let mut fwd = Pieces::new();
+    let mut f: f64 = 0.0;
+    for l in levels {
+        f = f.min(l.a);
+        let reach = l.floor + (l.a * l.a - f * f) / (2.0 * l.j);
+        let end = reach.min(l.top);
+        fwd.push(Piece {
+            v0: l.floor,
+            v1: end,
+            alpha: f * f - 2.0 * l.j * l.floor,
+            beta: 2.0 * l.j,
+        });
+        if end < l.top {
+            fwd.push(Piece {
+                v0: end,
+                v1: l.top,
+                alpha: l.a * l.a,
+                beta: 0.0,
+            });
+            f = l.a;
+        } else {
+            f = (f * f + 2.0 * l.j * (l.top - l.floor)).sqrt();
+        }
+    }
+    // Backward envelope: the same from hi down (pieces by decreasing speed).
+    let mut bwd = Pieces::new();
+    let mut g: f64 = 0.0;
+    for l in levels.iter().rev() {
+        let g0 = g.min(l.a);
+        let reach = l.top - (l.a * l.a - g0 * g0) / (2.0 * l.j);
+        let start = reach.max(l.floor);
+        bwd.push(Piece {
+            v0: start,
+            v1: l.top,
+            alpha: g0 * g0 + 2.0 * l.j * l.top,
+            beta: -2.0 * l.j,
+        });
+        if start > l.floor {
+            bwd.push(Piece {
+                v0: l.floor,
+                v1: start,
+                alpha: l.a * l.a,
+                beta: 0.0,
+            });
+            g = l.a;
+        } else {
+            g = (g0 * g0 + 2.0 * l.j * (l.top - l.floor)).sqrt();
+        }
+    }
+    let (fwd, bwd) = (fwd.as_slice(), bwd.as_slice());
+    // min(F, B) over the common refinement of both: on each stretch both are a² linear in v, so
+    // the smaller is the one below at its ends, the stretch split where they cross.
+    let (mut i, mut k) = (0, bwd.len());
+    while i < fwd.len() && k > 0 {
+        let (fp, bp) = (&fwd[i], &bwd[k - 1]);
+        let (u0, u1) = (fp.v0.max(bp.v0), fp.v1.min(bp.v1));
+        if u1 > u0 {
+            let d = |u: f64| (fp.alpha - bp.alpha) + (fp.beta - bp.beta) * u;
+            let (d0, d1) = (d(u0), d(u1));
+            let piece = |x0: f64, x1: f64, forward: bool| Piece {
+                v0: x0,
+                v1: x1,
+                ..*(if forward { fp } else { bp })
+            };
+            if (d0 <= 0.0) == (d1 <= 0.0) {
+                take(&piece(u0, u1, d0 + d1 <= 0.0));
+            } else {
+                let root = (u0 - d0 * (u1 - u0) / (d1 - d0)).clamp(u0, u1);
+                take(&piece(u0, root, d0 <= 0.0));
+                take(&piece(root, u1, d1 <= 0.0));
+            }
+        }
+        if fp.v1 <= bp.v1 {
+            i += 1;
+        } else {
+            k -= 1;
+        }
+    }
+}
+
+/// Duration and jerk of each piece as a phase.
+fn phase_of(p: &Piece) -> (f64, f64) {
+    let (a0, a1) = (p.a2(p.v0).sqrt(), p.a2(p.v1).sqrt());
+    if p.beta == 0.0 {
+        let a = a0.max(f64::MIN_POSITIVE);
+        ((p.v1 - p.v0) / a, 0.0)
+    } else {
+        let j = 0.5 * p.beta;
+        (((a1 - a0) / j).max(0.0), j)
+    }
+}
+
+/// Time and distance of the rise lo → hi (the drop hi → lo takes the same).
+fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
+    if hi <= lo {
+        return (0.0, 0.0);
+    }
+    let (mut t, mut s) = (0.0, 0.0);
+    rise(b, lo, hi, |p| {
+        let (tau, j) = phase_of(p);
+        let a0 = p.a2(p.v0).sqrt();
+        t += tau;
+        s += tau * (p.v0 + tau * (0.5 * a0 + tau * j / 6.0));
+    });
+    (t, s)
+}
+
+/// Time of the fastest speed change v1 → v2 under the bands (with none, scurve7's).
+pub fn ramp_time(b: &Banded, v1: f64, v2: f64) -> f64 {
+    let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
+    rise_time_distance(b, lo, hi).0
+}
+
+/// Distance of the fastest speed change v1 → v2 under the bands.
+pub fn ramp_distance(b: &Banded, v1: f64, v2: f64) -> f64 {
+    let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
+    rise_time_distance(b, lo, hi).1
+}
+
+/// Largest v ≥ v0 with a ramp between v0 and v within `length` (max_entry and max_exit alike):
+/// the distance grows with v. Bracketed by the block's top speed first (the look-ahead seldom
+/// needs more), else by doubling; then regula falsi on the distance as evaluated.
+pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
+    let v0 = v0.max(0.0);
+    let length = length.max(0.0);
+    let fits = |v: f64| {
+        let d = ramp_distance(b, v0, v);
+        (d <= length, d - length)
+    };
+    let top = b.top.v_max;
+    let mut good = v0;
+    if top.is_finite() && top > v0 {
+        if !fits(top).0 {
+            return falsi(good, top, |v| fits(v).1);
+        }
+        good = top;
+    }
+    let mut step = good.max(BRACKET_START);
+    for _ in 0..BRACKET_DOUBLINGS {
+        let hi = good + step;
+        if !fits(hi).0 {
+            return falsi(good, hi, |v| fits(v).1);
+        }
+        good = hi;
+        step *= 2.0;
+    }
+    good
+}
+
+/// Largest exit x ≤ `target` with a ramp from `v_in` within `length`, when a stop fits (0 if
+/// not): the distance from v_in rises as the exit falls from v_in and may fall again towards 0,
+/// so below the target the exits that fit are [0, x1]: regula falsi for x1.
+pub fn lowest_exit(b: &Banded, length: f64, v_in: f64, target: f64) -> f64 {
+    let d = |x: f64| ramp_distance(b, v_in, x);
+    if d(target) <= length {
+        return target;
+    }
+    if d(0.0) > length {
+        return 0.0;
+    }
+    falsi(0.0, target, |x| d(x) - length)
+}
+
+/// One block's profile under bands: ramp, cruise, ramp.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Scurve7Banded {
+    phases: Vec<Phase>,
+    v_peak: f64,
+    v_end: f64,
+    duration: f64,
+    length: f64,
+}
+
+impl Scurve7Banded {
+    /// A restored profile: at most the phases a plan through every band has (seven per band
+    /// and the top), back to back in time from 0.
+    pub fn check_state(&self) -> Result<(), String> {
+        let most = 7 * (super::bands::MAX_BANDS + 1) as u64;
+        crate::valid::at_most("banded phases", self.phases.len() as u64, most)?;
+        let mut t = 0.0;
+        for p in &self.phases {
+            if p.t0 != t || !(p.tau >= 0.0) {
+                return Err("banded profile: phases not back to back".into());
+            }
+            t += p.tau;
+        }
+        Ok(())
+    }
+}
+
+/// The block from `v_in` to `v_out` through at most `v_feed` over `length`, as scurve7's plan:
+/// the feed if the length allows, the highest peak otherwise; an exit that cannot be reached
+/// becomes the closest one that can (reported in `v_end`).
+pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scurve7Banded {
+    let finite = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
+    let (length, v_in, v_out) = (finite(length), finite(v_in), finite(v_out));
+    let mut v_feed = finite(v_feed);
+    if b.top.v_max.is_finite() && b.top.v_max > 0.0 {
+        v_feed = v_feed.min(b.top.v_max);
+    }
+    let d = |x: f64, y: f64| ramp_distance(b, x, y);
+    let (v_c, v_end) = if d(v_in, v_out) > length {
+        if v_out > v_in {
+            let v = max_speed(b, length, v_in).min(v_out);
+            (v, v)
+        } else if d(v_in, 0.0) <= length {
+            // A stop fits: the largest exit below v_out whose drop fits.
+            (v_in, lowest_exit(b, length, v_in, v_out))
+        } else {
+            // It does not: the smallest drop that fits, above v_out.
+            (v_in, falsi(v_in, v_out, |x| d(v_in, x) - length))
+        }
+    } else {
+        let v_hi = v_in.max(v_out);
+        let total = |v: f64| d(v_in, v) + d(v, v_out);
+        let v_c = if v_feed <= v_hi || total(v_feed) <= length {
+            v_feed.max(v_hi)
+        } else {
+            falsi(v_hi, v_feed, |v| total(v) - length)
+        };
+        (v_c, v_out)
+    };
+    build(b, length, v_in, v_c, v_end)
+}
+
+fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {
+    let mut up: Vec<(f64, f64)> = Vec::new();
+    rise(b, v_in, v_c, |p| up.push(phase_of(p)));
+    // The drop is the rise v_end → v_c played backwards: the same phases in reverse order.
+    let mut down: Vec<(f64, f64)> = Vec::new();
+    rise(b, v_end, v_c, |p| down.push(phase_of(p)));
+    down.reverse();
+    let ramps = rise_time_distance(b, v_in.min(v_c), v_c).1 + rise_time_distance(b, v_end.min(v_c), v_c).1;
+    let cruise = if v_c > 0.0 {
+        ((length - ramps) / v_c).max(0.0)
+    } else {
+        0.0
+    };
+    let mut phases: Vec<Phase> = Vec::with_capacity(up.len() + down.len() + 1);
+    let (mut t, mut s, mut v, mut a) = (0.0, 0.0, v_in, 0.0);
+    let mut push = |tau: f64, jerk: f64, v: &mut f64, a: &mut f64| {
+        if tau > 0.0 {
+            phases.push(Phase {
+                t0: t,
+                tau,
+                jerk,
+                s0: s,
+                v0: *v,
+                a0: *a,
+            });
+            let (ds, dv, da) = advance(tau, *v, *a, jerk);
+            t += tau;
+            s += ds;
+            *v += dv;
+            *a += da;
+        }
+    };
+    for &(tau, j) in &up {
+        push(tau, j, &mut v, &mut a);
+    }
+    // The speed at the end of the rise and in the cruise is known exactly.
+    (v, a) = (v_c, 0.0);
+    push(cruise, 0.0, &mut v, &mut a);
+    (v, a) = (v_c, 0.0);
+    for &(tau, j) in &down {
+        push(tau, j, &mut v, &mut a);
+    }
+    Scurve7Banded {
+        phases,
+        v_peak: v_c,
+        v_end: if v_end < v_c { v_end } else { v_c },
+        duration: t,
+        length: s,
+    }
+}
+
+/// Distance, speed and acceleration changes over `dt` from (v, a) with constant `jerk`.
+fn advance(dt: f64, v: f64, a: f64, jerk: f64) -> (f64, f64, f64) {
+    let ds = dt * (v + dt * (0.5 * a + dt * jerk / 6.0));
+    let dv = dt * (a + 0.5 * jerk * dt);
+    (ds, dv, jerk * dt)
+}
+
+impl Scurve7Banded {
+    /// The cruise speed (the highest speed of the block).
+    pub fn v_peak(&self) -> f64 {
+        self.v_peak
+    }
+}
+
+impl FeedLaw for Scurve7Banded {
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+    fn length(&self) -> f64 {
+        self.length
+    }
+    fn v_end(&self) -> f64 {
+        self.v_end
+    }
+    fn at(&self, t: f64) -> Kin {
+        let Some(first) = self.phases.first() else {
+            return Kin {
+                s: 0.0,
+                v: self.v_end,
+                a: 0.0,
+                j: 0.0,
+            };
+        };
+        if t >= self.duration {
+            return Kin {
+                s: self.length,
+                v: self.v_end,
+                a: 0.0,
+                j: 0.0,
+            };
+        }
+        let t = t.max(0.0);
+        let k = self.phases.partition_point(|p| p.t0 <= t).saturating_sub(1);
+        let p = if t < first.t0 { first } else { &self.phases[k] };
+        let dt = (t - p.t0).clamp(0.0, p.tau);
+        let (ds, dv, da) = advance(dt, p.v0, p.a0, p.jerk);
+        Kin {
+            s: p.s0 + ds,
+            v: p.v0 + dv,
+            a: p.a0 + da,
+            j: p.jerk,
+        }
+    }
+    fn phases(&self) -> Vec<f64> {
+        self.phases.iter().map(|p| p.tau).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feed::bands::{Band, Bands};
+    use crate::feed::{scurve7, BlockRequest, Limits, ProfileKind};
+
+    fn limits(v_max: f64, a_max: f64, j_max: f64) -> Limits {
+        Limits {
+            v_max,
+            a_max,
+            j_max,
+            snap_max: 1e9,
+        }
+    }
+
+    fn band(v_top: f64, a_max: f64, j_max: f64) -> Band {
+        Band { v_top, a_max, j_max }
+    }
+
+    /// Bands whose limits are all the same are no bands: ramps, entries, exits and blocks equal
+    /// scurve7's closed forms (the 7-phase law, which equals Ruckig rest to rest).
+    #[test]
+    fn equal_bands_are_scurve7() {
+        let top = limits(0.3, 2.0, 50.0);
+        let bands = Bands::below(
+            &top,
+            &[band(0.05, 2.0, 50.0), band(0.12, 2.0, 50.0), band(0.2, 2.0, 50.0)],
+        );
+        let b = Banded {
+            kind: ProfileKind::Scurve7,
+            top: &top,
+            bands: &bands,
+        };
+        for (v1, v2) in [(0.0, 0.3), (0.02, 0.17), (0.1, 0.11), (0.0, 0.01), (0.25, 0.3)] {
+            let ours = ramp_distance(&b, v1, v2);
+            let theirs = scurve7::ramp_distance(v1, v2, &top);
+            assert!(
+                (ours - theirs).abs() <= 1e-12 * theirs,
+                "{v1} → {v2}: {ours} vs {theirs}"
+            );
+        }
+        for (length, v_in, v_out) in [
+            (0.05, 0.0, 0.0),
+            (0.002, 0.0, 0.0),
+            (0.01, 0.1, 0.02),
+            (0.3, 0.05, 0.0),
+        ] {
+            let ours = plan(&b, length, v_in, v_out, 0.3);
+            let theirs = scurve7::plan(&BlockRequest {
+                length,
+                v_in,
+                v_out,
+                v_feed: 0.3,
+                limits: top,
+            });
+            assert!(
+                (ours.duration() - theirs.duration()).abs() <= 1e-9 * theirs.duration(),
+                "L {length}"
+            );
+            assert!((ours.length() - length).abs() <= 1e-12 * length);
+            assert!((ours.v_end() - theirs.v_end()).abs() <= 1e-9);
+        }
+        let (l, v) = (0.004, 0.03);
+        assert!((max_speed(&b, l, v) - scurve7::max_entry(l, v, &top)).abs() <= 1e-12);
+    }
+
+    fn falling_bands() -> (Limits, Bands) {
+        let top = limits(0.25, 0.4, 20.0);
+        let bands = Bands::below(
+            &top,
+            &[
+                band(0.08, 2.0, 60.0),
+                band(0.15, 1.5, 45.0),
+                band(0.2, 0.9, 30.0),
+                band(0.23, 0.6, 400.0),
+            ],
+        );
+        (top, bands)
+    }
+
+    /// Bands whose acceleration rises and falls with speed (a middle band allows more).
+    fn mixed_bands() -> (Limits, Bands) {
+        let top = limits(0.25, 0.5, 30.0);
+        let bands = Bands::below(
+            &top,
+            &[
+                band(0.05, 0.8, 80.0),
+                band(0.12, 1.9, 40.0),
+                band(0.18, 0.7, 300.0),
+                band(0.22, 1.1, 20.0),
+            ],
+        );
+        (top, bands)
+    }
+
+    /// The band of speed v: its acceleration and jerk.
+    fn band_limits(b: &Banded, v: f64) -> (f64, f64) {
+        for k in 0..b.count() {
+            let l = b.limits(k);
+            if v <= b.top_of(k) {
+                return (l.a_max, l.j_max);
+            }
+        }
+        unreachable!()
+    }
+
+    /// Blocks across falling bands, sampled finely: speed, acceleration and jerk within the band
+    /// of the speed at every instant, continuous acceleration, the length and the exit as asked,
+    /// and never slower than ramping band by band with the acceleration zero at each edge.
+    #[test]
+    fn blocks_keep_each_bands_limits() {
+        for (top, bands) in [falling_bands(), mixed_bands()] {
+            blocks_within(&top, &bands);
+        }
+    }
+
+    fn blocks_within(top: &Limits, bands: &Bands) {
+        let b = Banded {
+            kind: ProfileKind::Scurve7,
+            top,
+            bands,
+        };
+        let by_parts = Banded {
+            kind: ProfileKind::Quintic,
+            ..b
+        };
+        for &length in &[1e-4, 1e-3, 0.01, 0.05, 0.3] {
+            for &v_out in &[0.0, 0.1, 0.21, 0.24] {
+                let v_in = max_speed(&b, length, v_out).min(0.25);
+                let p = plan(&b, length, v_in, v_out, 0.25);
+                assert!(
+                    (p.length() - length).abs() <= 1e-12 * length.max(1e-3),
+                    "L {length}: {}",
+                    p.length()
+                );
+                assert!(
+                    (p.v_end() - v_out).abs() <= 1e-9,
+                    "ends at {} not {v_out}",
+                    p.v_end()
+                );
+                let n = 4000;
+                let mut last_a = 0.0;
+                for i in 0..=n {
+                    let k = p.at(p.duration() * i as f64 / n as f64);
+                    let (a_max, j_max) = band_limits(&b, k.v);
+                    assert!(k.v <= 0.25 * (1.0 + 1e-12) && k.v >= -1e-12);
+                    assert!(
+                        k.a.abs() <= a_max * (1.0 + 1e-9) + 1e-12,
+                        "a {} > {a_max} at v {}",
+                        k.a,
+                        k.v
+                    );
+                    assert!(
+                        k.j.abs() <= j_max * (1.0 + 1e-9),
+                        "j {} > {j_max} at v {}",
+                        k.j,
+                        k.v
+                    );
+                    assert!(
+                        (k.a - last_a).abs() <= 400.0 * p.duration() / n as f64 * 1.01 + 1e-12,
+                        "a jumps {last_a} → {} at v {} (L {length}, v_in {v_in}, v_out {v_out}): {:?}",
+                        k.a,
+                        k.v,
+                        p.phases
+                    );
+                    last_a = k.a;
+                }
+                // Rest to rest against the band-by-band parts of the same bands with scurve7's ramps.
+                let ours = plan(&b, length, 0.0, 0.0, 0.25).duration();
+                let parts: f64 = Banded {
+                    kind: ProfileKind::Scurve7,
+                    ..by_parts
+                }
+                .parts(length, 0.0, 0.0, 0.25)
+                .iter()
+                .map(|p| p.profile.duration())
+                .sum();
+                assert!(
+                    ours <= parts * (1.0 + 1e-9),
+                    "L {length}: {ours} vs parts {parts}"
+                );
+            }
+        }
+    }
+
+    /// A drop is the rise reversed: the same distance both ways, and the largest entry, the
+    /// largest exit and the lowest exit agree with the distance they invert.
+    #[test]
+    fn planning_questions_invert_the_distance() {
+        let (top, bands) = falling_bands();
+        let b = Banded {
+            kind: ProfileKind::Scurve7,
+            top: &top,
+            bands: &bands,
+        };
+        for &(length, v) in &[(1e-3, 0.0), (0.01, 0.05), (0.02, 0.19), (0.2, 0.0)] {
+            let w = max_speed(&b, length, v);
+            assert!(ramp_distance(&b, v, w) <= length);
+            assert!(ramp_distance(&b, v, w * (1.0 + 1e-9) + 1e-15) > length);
+            assert_eq!(ramp_distance(&b, v, w), ramp_distance(&b, w, v));
+        }
+        for &(v_in, length, target) in &[(0.24, 0.03, 0.2), (0.24, 0.002, 0.1), (0.24, 0.0005, 0.2)] {
+            let x = lowest_exit(&b, length, v_in, target);
+            assert!(x <= target);
+            if ramp_distance(&b, v_in, target) <= length {
+                assert_eq!(x, target);
+            } else if ramp_distance(&b, v_in, 0.0) <= length {
+                assert!(ramp_distance(&b, v_in, x) <= length);
+                assert!(
+                    x == target || ramp_distance(&b, v_in, x + 1e-9) > length,
+                    "{x} is not the largest"
+                );
+            } else {
+                assert_eq!(x, 0.0);
+            }
+        }
+    }
+}
