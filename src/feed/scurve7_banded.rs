@@ -305,7 +305,7 @@ impl Scurve7Banded {
         crate::valid::at_most("banded phases", self.phases.len() as u64, most)?;
         let mut t = 0.0;
         for p in &self.phases {
-            if p.t0 != t || !(p.tau >= 0.0) {
+            if p.t0 != t || p.tau.is_nan() || p.tau < 0.0 {
                 return Err("banded profile: phases not back to back".into());
             }
             t += p.tau;
