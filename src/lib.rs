@@ -21,6 +21,7 @@ pub mod error;
 pub mod feed;
 pub mod fmu;
 pub mod gcode;
+pub mod geometry;
 pub mod interp;
 pub mod model;
 pub mod package;
@@ -30,5 +31,4 @@ pub mod servo;
 pub mod tolerance;
 pub mod valid;
 
-/// A point or vector in machine axes X, Y, Z (m).
-pub type Vec3 = [f64; 3];
+pub use geometry::Vec3;

@@ -11,8 +11,7 @@
 use cnc_motion::config::{AxisLimits, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
-use cnc_motion::gcode::Plane;
-use cnc_motion::path::{Arc as ArcGeo, Line, Source};
+use cnc_motion::geometry::{Arc as ArcGeo, Line, Plane, Source};
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write;
 use std::sync::Arc;

@@ -15,9 +15,9 @@
 
 use cnc_motion::config::{CornerMode, Machine, MM};
 use cnc_motion::engine::Engine;
-use cnc_motion::gcode::{Motion, Plane, Reader};
+use cnc_motion::gcode::{Motion, Reader};
+use cnc_motion::geometry::{Arc as ArcGeo, Line, Plane, Source};
 use cnc_motion::interp::Differences;
-use cnc_motion::path::{Arc as ArcGeo, Line, Source};
 use proptest::prelude::*;
 use std::fmt::Write;
 use std::sync::Arc;
@@ -135,7 +135,7 @@ fn tool_centre(case: &Case, m: &Machine) -> Option<(Vec<Source>, Vec<Source>)> {
     let (mut path, mut ends) = (Vec::new(), Vec::new());
     while let Some(b) = r.next_block().ok()? {
         let line = b.line;
-        let geo = match (Source::of_block(&b), b.motion) {
+        let geo = match (b.geometry(), b.motion) {
             (Some(geo), _) => geo,
             (None, Motion::Arc { .. }) => return None,
             (None, _) => continue,

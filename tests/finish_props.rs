@@ -11,8 +11,7 @@
 use cnc_motion::config::{CornerMode, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::ProfileKind;
-use cnc_motion::gcode::Plane;
-use cnc_motion::path::{Arc as ArcGeo, Line, Source};
+use cnc_motion::geometry::{Arc as ArcGeo, Line, Plane, Source};
 use proptest::prelude::*;
 use std::fmt::Write;
 use std::sync::Arc;

@@ -3,7 +3,8 @@
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
 
-use cnc_motion::gcode::{validate, Block, Motion, PathMode, Plane, Reader, StopKind};
+use cnc_motion::gcode::{validate, Block, Motion, PathMode, Reader, StopKind};
+use cnc_motion::geometry::Plane;
 use proptest::prelude::*;
 use std::sync::Arc;
 

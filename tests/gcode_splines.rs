@@ -8,8 +8,8 @@
 use cnc_motion::config::{Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::gcode::{validate, Block, Motion, Reader};
+use cnc_motion::geometry::{distance_to_segment, Source};
 use cnc_motion::interp::Differences;
-use cnc_motion::path::Source;
 use std::sync::Arc;
 
 type P2 = [f64; 2];
@@ -31,7 +31,7 @@ fn error(text: &str) -> String {
 fn pieces(b: &[Block], line: u32) -> Vec<Source> {
     b.iter()
         .filter(|b| b.line == line)
-        .filter_map(Source::of_block)
+        .filter_map(Block::geometry)
         .collect()
 }
 
@@ -118,7 +118,7 @@ fn deviation(curve: &[P2], pieces: &[Source]) -> f64 {
         .map(|p| {
             curve
                 .windows(2)
-                .map(|w| cnc_motion::path::distance_to_segment(p, mm3(w[0]), mm3(w[1])))
+                .map(|w| distance_to_segment(p, mm3(w[0]), mm3(w[1])))
                 .fold(f64::INFINITY, f64::min)
         })
         .fold(0.0, f64::max);
@@ -245,7 +245,7 @@ fn splines_run_within_the_tolerance_and_the_limits() {
         }
         let off = curve
             .windows(2)
-            .map(|w| cnc_motion::path::distance_to_segment(p, mm3(w[0]), mm3(w[1])))
+            .map(|w| distance_to_segment(p, mm3(w[0]), mm3(w[1])))
             .fold(f64::INFINITY, f64::min)
             / MM;
         assert!(off <= tol, "tick {p:?} {off} mm off the curves");
@@ -262,10 +262,10 @@ fn splines_run_within_the_tolerance_and_the_limits() {
 #[test]
 fn inverse_time_spans_the_whole_spline() {
     let b = blocks("G93 G5 I0 J3 P0 Q-3 X1 Y1 F2\n", &Machine::default());
-    let length: f64 = b.iter().filter_map(Source::of_block).map(|g| g.length()).sum();
+    let length: f64 = b.iter().filter_map(Block::geometry).map(|g| g.length()).sum();
     let time: f64 = b
         .iter()
-        .filter_map(|b| Source::of_block(b).map(|g| g.length() / b.feed))
+        .filter_map(|b| b.geometry().map(|g| g.length() / b.feed))
         .sum();
     assert!((time - 30.0).abs() < 1e-9, "{time} s for {length} m");
 }

@@ -15,8 +15,7 @@
 
 use cnc_motion::config::{Machine, MM};
 use cnc_motion::engine::Engine;
-use cnc_motion::gcode::Plane;
-use cnc_motion::path::{Arc as ArcGeo, Line, Source};
+use cnc_motion::geometry::{Arc as ArcGeo, Line, Plane, Source};
 use proptest::prelude::*;
 use std::collections::HashMap;
 use std::f64::consts::TAU;

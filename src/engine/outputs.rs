@@ -28,11 +28,11 @@ impl Outputs {
         });
         let e: Vec3 = std::array::from_fn(|i| axes[i].position - tick.p[i]);
         let u = tick.tangent;
-        let along = crate::path::dot(e, u);
-        let normal = crate::path::sub(e, crate::path::scale(u, along));
+        let along = crate::geometry::dot(e, u);
+        let normal = crate::geometry::sub(e, crate::geometry::scale(u, along));
         Outputs {
             axes,
-            contour_error: crate::path::norm(normal),
+            contour_error: crate::geometry::norm(normal),
         }
     }
 }

@@ -14,17 +14,9 @@ pub mod words;
 pub use reader::{Reader, DEFAULT_ARC_TOLERANCE_M};
 pub use source::ProgramSource;
 
+use crate::geometry::{Arc, Line, Plane, Source};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
-
-/// Working plane of G2/G3 (G17, G18, G19).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Plane {
-    #[default]
-    XY,
-    XZ,
-    YZ,
-}
 
 /// Why the machine stops at the end of a block.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -84,6 +76,23 @@ pub struct Block {
 }
 
 impl Block {
+    /// The geometry of a programmed line, rapid or arc (None for other blocks and degenerate
+    /// arcs): what the path stage runs and what ticks are measured against.
+    pub fn geometry(&self) -> Option<Source> {
+        let from = self.from;
+        match self.motion {
+            Motion::Linear { to } | Motion::Rapid { to } => Some(Source::Line(Line { start: from, end: to })),
+            Motion::Arc {
+                to,
+                center,
+                plane,
+                clockwise,
+                turns,
+            } => Arc::from_gcode(from, to, center, plane, clockwise, turns).map(Source::Arc),
+            _ => None,
+        }
+    }
+
     /// A restored block (`crate::valid`): its numbers within what the reader produces.
     pub fn check_state(&self) -> Result<(), String> {
         use crate::valid::{at_most, point, within, MAX_POSITION_M, MAX_SPEED_M_S};

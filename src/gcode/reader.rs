@@ -19,9 +19,10 @@ mod words;
 use super::params::Params;
 use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
 use super::words::{split_with, Sets, Word};
-use super::{Block, Motion, PathMode, Plane, StopKind};
+use super::{Block, Motion, PathMode, StopKind};
 use crate::config::{CutterCorner, NcSetup};
 use crate::error::ProgramError;
+use crate::geometry::Plane;
 use crate::Vec3;
 use modal::Mode;
 use serde::{Deserialize, Serialize};
@@ -32,16 +33,6 @@ use serde::{Deserialize, Serialize};
 /// it exceeds both.
 pub const DEFAULT_ARC_TOLERANCE_M: f64 = 0.028e-3;
 const ARC_TOLERANCE_REL: f64 = 1e-3;
-
-/// Axis indices (a, b, normal) of a plane, right-handed so that G3 is a positive rotation about
-/// the normal: G17 (X, Y, Z), G18 (Z, X, Y), G19 (Y, Z, X).
-pub fn plane_axes(plane: Plane) -> (usize, usize, usize) {
-    match plane {
-        Plane::XY => (0, 1, 2),
-        Plane::XZ => (2, 0, 1),
-        Plane::YZ => (1, 2, 0),
-    }
-}
 
 /// `%` demarcation (LinuxCNC G-code overview, "File Requirements"): a program whose first
 /// non-blank line is `%` ends at the next `%` line, which it must have.

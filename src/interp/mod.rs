@@ -7,7 +7,8 @@ mod differences;
 pub use differences::Differences;
 
 use crate::feed::{FeedLaw, Kin};
-use crate::path::{Geo, Segment};
+use crate::geometry::Geo;
+use crate::path::Segment;
 use crate::plan::{Here, Planned};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -248,7 +249,7 @@ impl Interpolator {
             a,
             j,
             // Chains run in a parameter with |p'| ≈ 1; the feed is the speed along the path.
-            feed: crate::path::norm(v),
+            feed: crate::geometry::norm(v),
             path_acceleration: k.a,
             path_jerk: k.j,
             distance: self.distance_done + s,
@@ -262,7 +263,8 @@ impl Interpolator {
 mod tests {
     use super::*;
     use crate::feed::{BlockRequest, Limits, Profile, ProfileKind};
-    use crate::path::{Line, PathBlock};
+    use crate::geometry::Line;
+    use crate::path::PathBlock;
 
     fn planned(from: f64, to: f64, v_in: f64, v_out: f64) -> Planned {
         let limits = Limits {

@@ -10,7 +10,7 @@
 //! T = 2L/V_In and its axis motion is the paper's polynomial in time exactly (the path speed is
 //! V_In at M and N and V_In·|v − u|/2 at Q: Table 2's "feed rate in the transition").
 
-use super::{add, norm, scale, Geo};
+use crate::geometry::{add, norm, scale, Geo};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -103,7 +103,7 @@ impl Blend {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::path::{dot, sub};
+    use crate::geometry::{dot, sub};
 
     const MM: f64 = 1e-3;
 

@@ -3,10 +3,11 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::{arc::curve_bands, arc::Arc, hermite::Hermite, line::Line, max_bounds, norm, Geo};
+use super::{arc::curve_bands, hermite::Hermite, max_bounds};
 use crate::config::Machine;
 use crate::feed::bands::Bands;
 use crate::feed::Limits;
+use crate::geometry::{norm, Arc, Geo, Line};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 

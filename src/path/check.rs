@@ -2,11 +2,10 @@
 //! within the coordinate range, arcs no longer than the turns a program may ask for, chains,
 //! parts and transitions consistent, speeds and limits positive.
 
-use super::{
-    Arc, Blend, Chain, Curve, Hermite, Line, Move, PathBlock, PathBuilder, Piece, Segment, Source, Whole,
-};
+use super::{Blend, Chain, Curve, Hermite, Move, PathBlock, PathBuilder, Piece, Segment, Whole};
 use crate::config::Machine;
 use crate::gcode::check::{MAX_COORDINATE_M, MAX_DWELL_S, MAX_TURNS};
+use crate::geometry::{Arc, Line, Source};
 use crate::valid::{point, unit_vector, within, MAX_POSITION_M, MAX_SPEED_M_S};
 use std::f64::consts::TAU;
 

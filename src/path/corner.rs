@@ -1,11 +1,13 @@
 //! Corner rules between two segments: seed 003 corner feed, seed 004 eq. 8–9 circular blend,
 //! eq. 10 curvature-change speed at tangent junctions, and the quintic transition (blend.rs).
 
-use super::arc::{chord_error_speed, constant_speed_limit, Arc};
-#[cfg(test)]
-use super::norm;
-use super::{add, arc_limits, cross, dot, line_limits, scale, sub, unit, PathBlock, Segment};
+use super::arc::{chord_error_speed, constant_speed_limit};
+use super::{arc_limits, line_limits, PathBlock, Segment};
 use crate::config::{CornerMode, Machine};
+#[cfg(test)]
+use crate::geometry::norm;
+use crate::geometry::Arc;
+use crate::geometry::{add, cross, dot, scale, sub, unit};
 use crate::Vec3;
 
 /// Turns sharper than this (cos of the turning angle below it) stop exactly: the transition

@@ -8,7 +8,7 @@
 //! and evaluated in u: the planner runs the feed law in u and the chain rule uses p', p'', p'''
 //! w.r.t. u, so no arc-length inversion is needed and the derivative bounds are polynomial bounds.
 
-use super::{add, norm, scale, sub, Geo};
+use crate::geometry::{add, norm, scale, sub, Geo};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -246,7 +246,8 @@ pub fn bezier(a: &Jet, b: &Jet, l: f64) -> [Vec3; 6] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::path::{norm, Blend};
+    use crate::geometry::norm;
+    use crate::path::Blend;
 
     const MM: f64 = 1e-3;
 

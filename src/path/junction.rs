@@ -7,11 +7,12 @@ use super::chain::Curve;
 use super::chain::{piece_limits, CurveLimits};
 use super::corner::REVERSAL_COS;
 use super::hermite::Hermite;
+use super::slowest_axis;
 use super::smooth::{jet_at, Span, MIN_PIECE};
-use super::source::Source;
-use super::{dot, norm, slowest_axis, sub, unit};
 use crate::config::Machine;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
+use crate::geometry::Source;
+use crate::geometry::{dot, norm, sub, unit};
 
 /// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;

@@ -1,46 +1,8 @@
-//! Straight lines and their path limits (seed 004 eq. 11).
+//! Path limits of straight lines (seed 004 eq. 11).
 
-use super::{add, norm, scale, sub, Geo};
 use crate::config::Machine;
 use crate::feed::Limits;
 use crate::Vec3;
-use serde::{Deserialize, Serialize};
-
-/// Straight line from `start` to `end`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Line {
-    pub start: Vec3,
-    pub end: Vec3,
-}
-
-impl Line {
-    pub fn length(&self) -> f64 {
-        norm(sub(self.end, self.start))
-    }
-    /// Unit direction (zero for a zero-length line).
-    pub fn direction(&self) -> Vec3 {
-        let l = self.length();
-        if l > 0.0 {
-            scale(sub(self.end, self.start), 1.0 / l)
-        } else {
-            [0.0; 3]
-        }
-    }
-    /// Point at arc length s; s ≥ length gives the programmed end exactly.
-    pub fn eval(&self, s: f64) -> Geo {
-        let u = self.direction();
-        let p = if s >= self.length() {
-            self.end
-        } else {
-            add(self.start, scale(u, s))
-        };
-        Geo {
-            p,
-            d1: u,
-            ..Geo::default()
-        }
-    }
-}
 
 /// Seed 004 eq. 11: on a line of unit direction u, axis i moves at u_i·v, so the path limits
 /// are the smallest axis limit divided by |u_i| — the slowest axis sets the pace, all in phase.
@@ -91,15 +53,5 @@ mod tests {
         let k = 1.0 / 3f64.sqrt();
         let lim = line_limits([k, k, k], &m);
         assert!((lim.a_max - 2.0 * 3f64.sqrt()).abs() < 1e-12);
-    }
-
-    #[test]
-    fn line_end_is_exact() {
-        let l = Line {
-            start: [0.1, 0.2, 0.3],
-            end: [0.7, -0.1, 0.05],
-        };
-        assert_eq!(l.eval(l.length()).p, l.end);
-        assert!((norm(l.eval(0.3).d1) - 1.0).abs() < 1e-15);
     }
 }

@@ -9,8 +9,8 @@
 //! vertices, each with the line number of the move it stands for: the tool then reports the
 //! block it is on (source_map.rs).
 
-use super::{add, distance_to_segment, dot, scale, sub};
 use crate::gcode::{Block, Motion, PathMode};
+use crate::geometry::{add, distance_to_segment, dot, scale, sub};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 

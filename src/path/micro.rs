@@ -7,8 +7,8 @@
 //! tolerance.
 
 use super::smooth::Move;
-use super::source::Source;
-use super::Line;
+use crate::geometry::Line;
+use crate::geometry::Source;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 

@@ -14,7 +14,7 @@ use crate::config::{AxisLimits, CornerMode, Machine};
 use crate::feed::bands::Bands;
 use crate::feed::Limits;
 use crate::gcode::{Block, Motion, PathMode};
-use crate::Vec3;
+use crate::geometry::{dot, sub, unit, Arc, Geo, Line, Source, Vec3};
 use serde::{Deserialize, Serialize};
 
 mod arc;
@@ -29,29 +29,15 @@ mod line;
 mod merge;
 mod micro;
 mod smooth;
-mod source;
 mod source_map;
 
-pub use arc::{
-    arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, plane_axes, Arc, Shares,
-};
+pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, Shares};
 pub use blend::Blend;
 pub use chain::{Chain, Curve, Piece};
 pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed, step_jerk};
 pub use hermite::{Hermite, Jet};
-pub use line::{line_limits, Line};
+pub use line::line_limits;
 pub use smooth::{Move, SmoothBuilder};
-pub use source::{distance_to_segment, Source};
-
-/// A point of a segment and its derivatives with respect to the path parameter s:
-/// axis velocity = d1·v, acceleration = d2·v² + d1·a, jerk = d3·v³ + 3·d2·v·a + d1·j.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Geo {
-    pub p: Vec3,
-    pub d1: Vec3,
-    pub d2: Vec3,
-    pub d3: Vec3,
-}
 
 /// One piece of the path, parameterised by s ∈ [0, length()].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -306,7 +292,7 @@ impl PathBuilder {
     }
 
     fn push_merged(&mut self, block: &Block, out: &mut Vec<PathBlock>) {
-        let (segment, feed) = match (Source::of_block(block), block.motion) {
+        let (segment, feed) = match (block.geometry(), block.motion) {
             (_, Motion::Dwell { seconds }) => return self.stop(block, Some(seconds), out),
             (_, Motion::Stop(_)) => return self.stop(block, None, out),
             (None, _) => return,
@@ -544,10 +530,6 @@ impl PathBuilder {
     }
 }
 
-// Vec3 arithmetic stays these few plain functions on `[f64; 3]` rather than nalgebra's Vector3:
-// every stage passes Vec3 as plain data (Tick, Block, serde/postcard of the FMU state), they are in
-// the hottest loops (path evaluation every tick, 1 M blocks/s look-ahead) and compile to the same
-// three multiply-adds; a wrapper type would change every record for no gain.
 /// Limits at `v_max` with the acceleration and jerk of the slowest axis (what holds whichever
 /// way the path points).
 fn slowest_axis(m: &Machine, v_max: f64) -> Limits {
@@ -567,38 +549,6 @@ fn tolerance_of(mode: PathMode, machine_tolerance: f64) -> f64 {
             tolerance: Some(t), ..
         } if t > 0.0 => t,
         _ => machine_tolerance,
-    }
-}
-
-pub fn add(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-pub fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub fn scale(a: Vec3, k: f64) -> Vec3 {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-pub fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub fn norm(a: Vec3) -> f64 {
-    dot(a, a).sqrt()
-}
-pub fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-/// a/|a|, zero for a zero vector.
-pub fn unit(a: Vec3) -> Vec3 {
-    let n = norm(a);
-    if n > 0.0 {
-        scale(a, 1.0 / n)
-    } else {
-        [0.0; 3]
     }
 }
 

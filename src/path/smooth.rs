@@ -22,12 +22,13 @@
 use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::transition;
-use super::source::{distance_to_segment, Source};
 use super::source_map;
-use super::{add, cross, dot, line_limits, max_bounds, norm, scale, sub, unit, Line, PathBlock, Segment};
+use super::{line_limits, max_bounds, PathBlock, Segment};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
 use crate::feed::{scurve7_banded, FeedLaw, Limits, ProfileKind};
+use crate::geometry::{add, cross, dot, norm, scale, sub, unit, Line};
+use crate::geometry::{distance_to_segment, Source};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 

@@ -13,7 +13,7 @@
 
 use super::hermite::Hermite;
 use super::smooth::Move;
-use super::source::Source;
+use crate::geometry::Source;
 
 /// Samples of a transition (as its tolerance check, junction.rs).
 const SAMPLES: usize = 64;

@@ -400,7 +400,8 @@ impl Planner {
 mod tests {
     use super::*;
     use crate::config::Machine;
-    use crate::path::{line_limits, Line};
+    use crate::geometry::Line;
+    use crate::path::line_limits;
 
     fn line_block(from: f64, to: f64, feed: f64, v_end_max: f64) -> PathBlock {
         let machine = Machine::default();

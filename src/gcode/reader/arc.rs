@@ -2,9 +2,10 @@
 //! onto it) or from R (LinuxCNC "G2, G3": "Center Format Arcs", "Radius Format Arcs").
 
 use super::words::LineWords;
-use super::{plane_axes, Reader, ARC_TOLERANCE_REL};
+use super::{Reader, ARC_TOLERANCE_REL};
 use crate::error::ProgramError;
-use crate::gcode::{check, Block, Motion, Plane};
+use crate::gcode::{check, Block, Motion};
+use crate::geometry::Plane;
 use crate::Vec3;
 
 impl Reader {
@@ -19,7 +20,7 @@ impl Reader {
     ) -> Result<Block, ProgramError> {
         let (ijk, r, p) = (w.ijk, w.r, w.p);
         let name = if clockwise { "G2" } else { "G3" };
-        let n = plane_axes(self.plane).2;
+        let n = self.plane.axes().2;
         if self.plane != Plane::XY && self.rotation().rem_euclid(360.0) != 0.0 {
             // The rotated XZ / YZ plane is not one of the machine's planes.
             let msg = format!(
@@ -73,7 +74,7 @@ impl Reader {
         to: Vec3,
         ijk: &[Option<(f64, u32)>; 3],
     ) -> Result<Vec3, ProgramError> {
-        let (a, b, n) = plane_axes(self.plane);
+        let (a, b, n) = self.plane.axes();
         let from = self.position;
         let mut center = from;
         let words = ijk.map(|w| w.map_or(0.0, |(v, _)| v * self.unit));
@@ -136,7 +137,7 @@ impl Reader {
         to: Vec3,
         (rv, rc): (f64, u32),
     ) -> Result<Vec3, ProgramError> {
-        let (a, b, n) = plane_axes(self.plane);
+        let (a, b, n) = self.plane.axes();
         let from = self.position;
         let mut center = from;
         center[n] = 0.0;

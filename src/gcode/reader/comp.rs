@@ -7,10 +7,11 @@
 //! corners: a transition arc about the corner (G450) or the tangents extended (G451).
 
 use super::comp_geom::{add, cross, dist, dot, intersect, Curve, Elem, JOIN, P2};
-use super::{plane_axes, Reader};
+use super::Reader;
 use crate::config::CutterCorner;
 use crate::error::ProgramError;
-use crate::gcode::{check, Block, Motion, Plane, StopKind};
+use crate::gcode::{check, Block, Motion, StopKind};
+use crate::geometry::Plane;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -51,7 +52,7 @@ impl Comp {
         within("compensation radius", self.held_radius, 0.0, MAX_POSITION_M)?;
         point("compensation tool point", self.tool, MAX_POSITION_M)?;
         at_most("deferred blocks", self.deferred.len() as u64, MAX_DEFERRED as u64)?;
-        let (a, b, _) = plane_axes(self.plane);
+        let (a, b, _) = self.plane.axes();
         if self.held.is_some_and(|h| Elem::of(&h, a, b).is_none()) {
             return Err("the held compensation element does not move in its plane".into());
         }
@@ -131,7 +132,7 @@ impl Reader {
     }
 
     fn compensate(&mut self, b: Block) -> Result<(), ProgramError> {
-        let (a, bb, _) = plane_axes(self.comp.plane);
+        let (a, bb, _) = self.comp.plane.axes();
         let Some(elem) = Elem::of(&b, a, bb) else {
             return self.not_in_plane(b);
         };
@@ -222,7 +223,7 @@ impl Reader {
 
     /// The corner between the held element and the next one `next` (its plane element `e2`).
     fn corner(&mut self, held: Block, next: Block, e2: Elem) -> Result<(), ProgramError> {
-        let (a, b, _) = plane_axes(self.comp.plane);
+        let (a, b, _) = self.comp.plane.axes();
         let (side, r) = (self.comp.side, self.comp.radius);
         let e1 = Elem::of(&held, a, b).expect("held blocks move in the plane");
         let c = e1.end();
@@ -273,7 +274,7 @@ impl Reader {
         let rapid = matches!(held.motion, Motion::Rapid { .. });
         if self.corner == CutterCorner::Arc && !rapid {
             self.end_held(held, Some(p1));
-            let (a, b, _) = plane_axes(self.comp.plane);
+            let (a, b, _) = self.comp.plane.axes();
             let mut center = [0.0; 3];
             center[a] = c[0];
             center[b] = c[1];
@@ -321,13 +322,13 @@ impl Reader {
 
     /// In-plane coordinates of a point.
     fn plane_of(&self, p: Vec3) -> P2 {
-        let (a, b, _) = plane_axes(self.comp.plane);
+        let (a, b, _) = self.comp.plane.axes();
         [p[a], p[b]]
     }
 
     /// The tool position with the in-plane coordinates `p`.
     fn point3(&self, p: P2) -> Vec3 {
-        let (a, b, _) = plane_axes(self.comp.plane);
+        let (a, b, _) = self.comp.plane.axes();
         let mut q = self.comp.tool;
         q[a] = p[0];
         q[b] = p[1];
@@ -345,7 +346,7 @@ impl Reader {
 
     /// Queue `b` from the tool position, its in-plane end moved to `to` if given.
     fn emit(&mut self, mut b: Block, to: Option<P2>) {
-        let (a, bb, _) = plane_axes(self.comp.plane);
+        let (a, bb, _) = self.comp.plane.axes();
         b.from = self.comp.tool;
         if let Motion::Rapid { to: end } | Motion::Linear { to: end } | Motion::Arc { to: end, .. } =
             &mut b.motion
@@ -366,7 +367,7 @@ impl Reader {
 
     /// Emit the held element ending at `end` (None: perpendicular offset of its end).
     fn end_held(&mut self, held: Block, end: Option<P2>) {
-        let (a, b, _) = plane_axes(self.comp.plane);
+        let (a, b, _) = self.comp.plane.axes();
         let e = Elem::of(&held, a, b).expect("held blocks move in the plane");
         let end = end.unwrap_or_else(|| e.offset_point(e.end(), self.comp.held_side, self.comp.held_radius));
         self.emit(held, Some(end));

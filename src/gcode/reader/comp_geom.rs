@@ -1,5 +1,5 @@
 //! Plane geometry of cutter compensation: offset elements (lines and arcs in the active plane)
-//! and their intersections. Points are (a, b) in the plane's axes (`plane_axes`). Every
+//! and their intersections. Points are (a, b) in the plane's axes (`Plane::axes`). Every
 //! tolerance is a length, JOIN: two offset points nearer than it are one point, an element may
 //! start that far from its ideal start and run that far past its end. An angle tolerance would
 //! be a length that shrinks with the radius (1e-9 rad is 3e-12 m on a 3 mm arc, smaller than the

@@ -9,7 +9,8 @@
 use super::words::LineWords;
 use super::Reader;
 use crate::error::ProgramError;
-use crate::gcode::{check, Block, Motion, Plane};
+use crate::gcode::{check, Block, Motion};
+use crate::geometry::Plane;
 use serde::{Deserialize, Serialize};
 
 /// LinuxCNC's G83 rapid clearance above the previous peck and G73 chip-break retract, 0.010 in.

@@ -11,7 +11,8 @@
 use super::words::LineWords;
 use super::Reader;
 use crate::error::ProgramError;
-use crate::gcode::{check, Plane};
+use crate::gcode::check;
+use crate::geometry::Plane;
 use crate::Vec3;
 
 /// cos θ and sin θ of `deg` degrees, exact at multiples of 90° (a rotation by R90 moves X5 to

@@ -4,7 +4,6 @@
 //! the machine's feed cap applies. A spline's pieces share its 1/F minutes.
 
 use crate::gcode::Block;
-use crate::path::Source;
 
 /// Path feed (m/s) of a move of `length` (m) taking 1/F minutes, capped at `max` (the machine's
 /// largest feed); a move of zero length gets the largest feed.
@@ -20,5 +19,5 @@ pub fn feed(length: f64, f: f64, max: f64) -> f64 {
 /// Length (m) of a line, or of an arc / helix with its extra turns: the path stage's geometry,
 /// so that the move takes the programmed time on the path actually run.
 pub fn length(block: &Block) -> f64 {
-    Source::of_block(block).map_or(0.0, |g| g.length())
+    block.geometry().map_or(0.0, |g| g.length())
 }

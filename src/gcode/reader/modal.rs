@@ -7,7 +7,8 @@ use crate::config::CutterCorner;
 use crate::error::ProgramError;
 use crate::gcode::check;
 use crate::gcode::words::Word;
-use crate::gcode::{PathMode, Plane, StopKind};
+use crate::gcode::{PathMode, StopKind};
+use crate::geometry::Plane;
 use serde::{Deserialize, Serialize};
 
 /// A motion mode (modal group 1, LinuxCNC "Modal Groups").

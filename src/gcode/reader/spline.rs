@@ -13,7 +13,8 @@ use super::nurbs::Nurbs;
 use super::words::LineWords;
 use super::{LineCodes, Reader};
 use crate::error::ProgramError;
-use crate::gcode::{Block, Motion, PathMode, Plane};
+use crate::gcode::{Block, Motion, PathMode};
+use crate::geometry::Plane;
 use serde::{Deserialize, Serialize};
 
 /// Share of the chord tolerance a spline's arcs may deviate from the curve.

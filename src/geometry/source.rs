@@ -1,9 +1,7 @@
-//! Programmed geometry: the line or arc of a G-code block, as the path stage runs it and as
-//! ticks are measured against it.
+//! Programmed geometry: the line or arc of a G-code block (`Block::geometry`), as the path stage
+//! runs it and as ticks are measured against it.
 
-use super::{add, dot, norm, scale, sub, Arc, Line};
-use crate::gcode::{Block, Motion};
-use crate::Vec3;
+use super::{add, dot, norm, scale, sub, Arc, Line, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// Programmed geometry: what ticks are measured against.
@@ -14,23 +12,6 @@ pub enum Source {
 }
 
 impl Source {
-    /// The geometry of a programmed line, rapid or arc (None for other blocks and degenerate
-    /// arcs): what the path stage runs and what ticks are measured against.
-    pub fn of_block(block: &Block) -> Option<Source> {
-        let from = block.from;
-        match block.motion {
-            Motion::Linear { to } | Motion::Rapid { to } => Some(Source::Line(Line { start: from, end: to })),
-            Motion::Arc {
-                to,
-                center,
-                plane,
-                clockwise,
-                turns,
-            } => Arc::from_gcode(from, to, center, plane, clockwise, turns).map(Source::Arc),
-            _ => None,
-        }
-    }
-
     pub fn length(&self) -> f64 {
         match self {
             Source::Line(l) => l.length(),

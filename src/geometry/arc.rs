@@ -1,0 +1,300 @@
+//! Circular arcs and helices (G2/G3, circular corner blends): exact evaluation w.r.t. arc length
+//! and bounds of the derivatives per axis (the path stage projects the axis limits through them).
+
+use super::{add, basis, cross, scale, Geo, Plane, Vec3};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// p(φ) = center + R(cos φ·e1 + sin φ·e2) + rise·φ/sweep·axis, φ ∈ [0, sweep], traversed with
+/// φ increasing (e2 is the direction of motion at the start, so CW/CCW is in e2's sign).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Arc {
+    pub center: Vec3,
+    pub e1: Vec3,
+    pub e2: Vec3,
+    /// Unit vector along which the helix rises (normal to the plane).
+    pub axis: Vec3,
+    pub radius: f64,
+    /// Swept angle (rad, > 0; full turns included).
+    pub sweep: f64,
+    /// Displacement along `axis` over the whole arc (helix; 0 for a plane arc).
+    pub rise: f64,
+    /// Programmed start point, returned exactly by `eval(0)`.
+    pub start: Vec3,
+    /// Programmed end point, returned exactly by `end()` and by `eval(length)`.
+    pub end: Vec3,
+}
+
+impl Arc {
+    /// G2/G3 from `from` to `to` about `center` in `plane`, plus `turns` extra full turns. The
+    /// centre is moved onto the perpendicular bisector of the chord (nearest point to the
+    /// programmed one) so start and end lie on one circle and the end is met exactly.
+    /// None when the radius is zero.
+    pub fn from_gcode(
+        from: Vec3,
+        to: Vec3,
+        center: Vec3,
+        plane: Plane,
+        clockwise: bool,
+        turns: u32,
+    ) -> Option<Arc> {
+        let (a, b, n) = plane.axes();
+        let p0 = [from[a], from[b]];
+        let p1 = [to[a], to[b]];
+        let mut c = [center[a], center[b]];
+        let chord = [p1[0] - p0[0], p1[1] - p0[1]];
+        let chord_len = chord[0].hypot(chord[1]);
+        if chord_len > 0.0 {
+            let mid = [0.5 * (p0[0] + p1[0]), 0.5 * (p0[1] + p1[1])];
+            let perp = [-chord[1] / chord_len, chord[0] / chord_len];
+            let k = (c[0] - mid[0]) * perp[0] + (c[1] - mid[1]) * perp[1];
+            c = [mid[0] + k * perp[0], mid[1] + k * perp[1]];
+        }
+        let r0 = [p0[0] - c[0], p0[1] - c[1]];
+        let r1 = [p1[0] - c[0], p1[1] - c[1]];
+        let radius = r0[0].hypot(r0[1]);
+        if radius.is_nan() || radius <= 0.0 || !radius.is_finite() {
+            return None;
+        }
+        let ang0 = r0[1].atan2(r0[0]);
+        let ang1 = r1[1].atan2(r1[0]);
+        let mut sweep = if clockwise { ang0 - ang1 } else { ang1 - ang0 };
+        sweep = sweep.rem_euclid(TAU);
+        // Same start and end (to rounding): a full circle.
+        if chord_len <= 1e-12 * radius || sweep <= 1e-12 {
+            sweep = TAU;
+        }
+        sweep += TAU * turns as f64;
+        let (ea, eb, en) = (basis(a), basis(b), basis(n));
+        let e1 = add(scale(ea, r0[0] / radius), scale(eb, r0[1] / radius));
+        let ccw_dir = cross(en, e1);
+        let e2 = if clockwise { scale(ccw_dir, -1.0) } else { ccw_dir };
+        let mut center3 = from;
+        center3[a] = c[0];
+        center3[b] = c[1];
+        Some(Arc {
+            center: center3,
+            e1,
+            e2,
+            axis: en,
+            radius,
+            sweep,
+            rise: to[n] - from[n],
+            start: from,
+            end: to,
+        })
+    }
+
+    /// ds/dφ = sqrt(R² + h²), h = rise per radian.
+    fn speed(&self) -> f64 {
+        self.radius.hypot(self.rise / self.sweep)
+    }
+
+    pub fn length(&self) -> f64 {
+        self.sweep * self.speed()
+    }
+
+    /// Radius of curvature of the helix, (R² + h²)/R.
+    pub fn curvature_radius(&self) -> f64 {
+        let k = self.speed();
+        k * k / self.radius
+    }
+
+    pub fn start(&self) -> Vec3 {
+        self.start
+    }
+
+    /// Exact derivatives w.r.t. arc length (φ = s/k): d1 = (R·e_θ + h·axis)/k,
+    /// d2 = −R·e_r/k², d3 = −R·e_θ/k³, with e_r = cos φ e1 + sin φ e2, e_θ = −sin φ e1 + cos φ e2.
+    pub fn eval(&self, s: f64) -> Geo {
+        let k = self.speed();
+        let h = self.rise / self.sweep;
+        let phi = (s / k).clamp(0.0, self.sweep);
+        let (sn, cs) = phi.sin_cos();
+        let e_r = add(scale(self.e1, cs), scale(self.e2, sn));
+        let e_t = add(scale(self.e1, -sn), scale(self.e2, cs));
+        let r = self.radius;
+        let p = if s >= self.length() {
+            self.end
+        } else if s <= 0.0 {
+            self.start
+        } else {
+            add(add(self.center, scale(e_r, r)), scale(self.axis, h * phi))
+        };
+        Geo {
+            p,
+            d1: scale(add(scale(e_t, r), scale(self.axis, h)), 1.0 / k),
+            d2: scale(e_r, -r / (k * k)),
+            d3: scale(e_t, -r / (k * k * k)),
+        }
+    }
+
+    /// Upper bounds over the arc of |d1_i|, |d2_i|, |d3_i| per axis (the in-plane part of axis i
+    /// has amplitude sqrt(e1_i² + e2_i²) over a turn).
+    pub fn derivative_bounds(&self) -> [Vec3; 3] {
+        let k = self.speed();
+        let h = self.rise / self.sweep;
+        let r = self.radius;
+        let mut b = [[0.0; 3]; 3];
+        for i in 0..3 {
+            let amp = self.e1[i].hypot(self.e2[i]);
+            let [d1, d2, d3] = &mut b;
+            d1[i] = ((r * amp + (h * self.axis[i]).abs()) / k).min(1.0);
+            d2[i] = r * amp / (k * k);
+            d3[i] = r * amp / (k * k * k);
+        }
+        b
+    }
+}
+
+impl Arc {
+    /// Per-axis bounds of |p'|, |p''|, |p'''| on stretches of at most `CELL_ANGLE` of the sweep:
+    /// each component is a sinusoid of φ of amplitude R·|(e1_i, e2_i)| (over k, k², k³), so on
+    /// [φc − δ, φc + δ] it stays within its value at φc plus the amplitude times δ.
+    pub fn cells(&self, mut take: impl FnMut([Vec3; 3])) {
+        let k = self.speed();
+        let h = self.rise / self.sweep;
+        let r = self.radius;
+        let n = ((self.sweep / CELL_ANGLE).ceil() as usize).clamp(1, MAX_CELLS);
+        let delta = 0.5 * self.sweep / n as f64;
+        for c in 0..n {
+            let phi = (2 * c + 1) as f64 * delta;
+            let (sn, cs) = phi.sin_cos();
+            // Per axis (|p'|, |p''|, |p'''|), then as rows of the cell.
+            let axis: [[f64; 3]; 3] = std::array::from_fn(|i| {
+                let amp = self.e1[i].hypot(self.e2[i]);
+                let e_t = (-sn * self.e1[i] + cs * self.e2[i]).abs();
+                let e_r = (cs * self.e1[i] + sn * self.e2[i]).abs();
+                let grow = amp * delta;
+                [
+                    ((r * (e_t + grow).min(amp) + (h * self.axis[i]).abs()) / k).min(1.0),
+                    r * (e_r + grow).min(amp) / (k * k),
+                    r * (e_t + grow).min(amp) / (k * k * k),
+                ]
+            });
+            take(std::array::from_fn(|n| [axis[0][n], axis[1][n], axis[2][n]]));
+        }
+    }
+}
+
+/// Largest stretch of an arc in one cell (rad), and most cells per arc.
+const CELL_ANGLE: f64 = std::f64::consts::PI / 16.0;
+const MAX_CELLS: usize = 256;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{dot, norm, sub};
+
+    fn dist(a: Vec3, b: Vec3) -> f64 {
+        norm(sub(a, b))
+    }
+    use std::f64::consts::PI;
+
+    use crate::config::MM;
+
+    #[test]
+    fn quarter_circle_end_points_and_derivatives() {
+        // G3 X0 Y10 from (10, 0) about (0, 0): a quarter circle, R = 10 mm.
+        let arc = Arc::from_gcode(
+            [10.0 * MM, 0.0, 0.0],
+            [0.0, 10.0 * MM, 0.0],
+            [0.0; 3],
+            Plane::XY,
+            false,
+            0,
+        )
+        .unwrap();
+        assert!((arc.length() - PI / 2.0 * 10.0 * MM).abs() < 1e-15);
+        assert_eq!(arc.eval(arc.length()).p, [0.0, 10.0 * MM, 0.0]);
+        assert_eq!(arc.eval(0.0).p, [10.0 * MM, 0.0, 0.0]);
+        assert!(dist(arc.eval(1e-15).p, [10.0 * MM, 0.0, 0.0]) < 2e-15);
+        // Half way: (R cos 45°, R sin 45°), tangent (−1, 1)/√2, d2 = −e_r/R, d3 = −e_θ/R².
+        let g = arc.eval(arc.length() / 2.0);
+        let c = (PI / 4.0).cos();
+        assert!(dist(g.p, [10.0 * MM * c, 10.0 * MM * c, 0.0]) < 1e-17);
+        assert!(dist(g.d1, [-c, c, 0.0]) < 1e-15);
+        let r = 10.0 * MM;
+        assert!(dist(g.d2, [-c / r, -c / r, 0.0]) < 1e-12);
+        assert!(dist(g.d3, [c / (r * r), -c / (r * r), 0.0]) < 1e-9);
+        // G2 the other way round: three quarters of the circle, clockwise.
+        let cw = Arc::from_gcode(
+            [10.0 * MM, 0.0, 0.0],
+            [0.0, 10.0 * MM, 0.0],
+            [0.0; 3],
+            Plane::XY,
+            true,
+            0,
+        )
+        .unwrap();
+        assert!((cw.length() - 1.5 * PI * r).abs() < 1e-15);
+        let g = cw.eval(0.0);
+        assert!(dist(g.d1, [0.0, -1.0, 0.0]) < 1e-15);
+        let g = cw.eval(cw.length() / 3.0);
+        assert!(dist(g.p, [0.0, -r, 0.0]) < 1e-17);
+    }
+
+    #[test]
+    fn helix_length_and_frame() {
+        // Full turn + 1 extra (P2 style: turns = 1) rising 4 mm in G17: length = sqrt((2πR·n)² + H²).
+        let r = 5.0 * MM;
+        let from = [r, 0.0, 0.0];
+        let to = [r, 0.0, 4.0 * MM];
+        let arc = Arc::from_gcode(from, to, [0.0; 3], Plane::XY, false, 1).unwrap();
+        let expected = ((2.0 * TAU * r).powi(2) + (4.0 * MM).powi(2)).sqrt();
+        assert!((arc.length() - expected).abs() < 1e-15);
+        assert_eq!(arc.eval(arc.length()).p, to);
+        let k = arc.length() / (2.0 * TAU);
+        let h = 4.0 * MM / (2.0 * TAU);
+        for i in 0..=20 {
+            let s = arc.length() * i as f64 / 20.0;
+            let g = arc.eval(s);
+            assert!((norm(g.d1) - 1.0).abs() < 1e-14);
+            // Curvature of a helix R/(R² + h²), d2 ⟂ d1, |d3| = R/k³ (κ·τ-free: constant curvature).
+            assert!((norm(g.d2) - r / (k * k)).abs() < 1e-9);
+            assert!(dot(g.d1, g.d2).abs() < 1e-9);
+            assert!((norm(g.d3) - r / (k * k * k)).abs() < 1e-6);
+            // Rises linearly with arc length.
+            assert!((g.p[2] - h * s / k).abs() < 1e-15);
+            // Finite differences agree with d1 and d2.
+            if i > 0 && i < 20 {
+                let e = 1e-6;
+                let (a, c) = (arc.eval(s - e), arc.eval(s + e));
+                let fd1 = scale(sub(c.p, a.p), 0.5 / e);
+                assert!(dist(fd1, g.d1) < 1e-6);
+                let fd2 = scale(sub(c.d1, a.d1), 0.5 / e);
+                assert!(dist(fd2, g.d2) < 1e-3 * norm(g.d2));
+                let fd3 = scale(sub(c.d2, a.d2), 0.5 / e);
+                assert!(dist(fd3, g.d3) < 1e-3 * norm(g.d3));
+            }
+        }
+    }
+
+    #[test]
+    fn planes_g18_g19() {
+        // G18 G3 from X10 to Z10 about the origin: Z × X = Y, so CCW turns from Z towards X.
+        let r = 10.0 * MM;
+        let arc = Arc::from_gcode([0.0, 0.0, r], [r, 0.0, 0.0], [0.0; 3], Plane::XZ, false, 0).unwrap();
+        assert!((arc.length() - PI / 2.0 * r).abs() < 1e-15);
+        let arc = Arc::from_gcode([0.0, r, 0.0], [0.0, 0.0, r], [0.0; 3], Plane::YZ, false, 0).unwrap();
+        assert!((arc.length() - PI / 2.0 * r).abs() < 1e-15);
+        // Off-bisector centre is projected: both radii equal, end exact.
+        let arc = Arc::from_gcode(
+            [r, 0.0, 0.0],
+            [0.0, r, 0.0],
+            [1e-6, 0.0, 0.0],
+            Plane::XY,
+            false,
+            0,
+        )
+        .unwrap();
+        assert_eq!(arc.eval(arc.length()).p, [0.0, r, 0.0]);
+        assert_eq!(arc.eval(0.0).p, [r, 0.0, 0.0]);
+        assert!(dist(add(arc.center, scale(arc.e1, arc.radius)), [r, 0.0, 0.0]) < 1e-17);
+        // The centre moved to (5e-7, 5e-7) on the bisector: both ends on one circle.
+        assert!(dist(arc.center, [5e-7, 5e-7, 0.0]) < 1e-18);
+        assert!((dist(arc.center, [0.0, r, 0.0]) - arc.radius).abs() < 1e-17);
+        let p = arc.eval(arc.length() * (1.0 - 1e-12)).p;
+        assert!(dist(p, [0.0, r, 0.0]) < 1e-12);
+    }
+}
