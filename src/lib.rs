@@ -4,6 +4,9 @@
 //! `gcode` (Block) → `path` (PathBlock with a Segment) → `plan` (Planned: v_in, v_out, Profile)
 //! → `feed` (Profile: s/v/a/j at t) → `interp` (Tick) → `servo` (AxisState).
 //! `engine` strings the stages together for the CLI and the FMU; `model` is the FMU's variable table.
+//! Below the stages: `geometry` (Vec3, planes, the programmed line or arc of a block), `si` (unit
+//! factors), `valid`, `error`; `config` (the machine) sits above `feed` and `servo`, below the
+//! rest. No import cycle among these modules (tests/house.rs).
 //! Inside the library everything is SI (m, s, m/s, m/s², m/s³).
 
 // `unused_crate_dependencies` (workspace lints) sees the library alone: these are the binary's
@@ -28,6 +31,7 @@ pub mod package;
 pub mod path;
 pub mod plan;
 pub mod servo;
+pub mod si;
 pub mod tolerance;
 pub mod valid;
 

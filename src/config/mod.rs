@@ -129,7 +129,7 @@ impl Default for Machine {
             corner: CornerMode::Smooth,
             path_tolerance: 0.01e-3,
             chord_tolerance: 0.001e-3,
-            arc_radius_tolerance: crate::gcode::DEFAULT_ARC_TOLERANCE_M,
+            arc_radius_tolerance: DEFAULT_ARC_TOLERANCE_M,
             max_feed: 6000.0 / 60.0 * 1e-3,
             max_path_acceleration: None,
             max_path_jerk: None,
@@ -201,8 +201,13 @@ pub struct MachineFile {
 }
 
 /// One millimetre (m) and one mm/min (m/s): machine files and tests write their numbers in these.
-pub const MM: f64 = 1e-3;
-pub const MM_MIN: f64 = 1e-3 / 60.0;
+pub use crate::si::{MM, MM_MIN};
+
+/// Arc end points may disagree with the centre by the machine's `arc_radius_tolerance_mm`
+/// (default 0.028 mm, LinuxCNC's CENTER_ARC_RADIUS_TOLERANCE; in G20 programs 2.54 times that,
+/// 0.0028 in, LinuxCNC's inch value) or by the reader's share of the radius; an arc is refused
+/// only when it exceeds both.
+pub const DEFAULT_ARC_TOLERANCE_M: f64 = 0.028e-3;
 
 impl Machine {
     /// Parse a machine file; errors name `file:line:col`.

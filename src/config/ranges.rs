@@ -289,7 +289,7 @@ pub fn row<'a>(table: &'a [Range], key: &str) -> Result<&'a Range, RangeError> {
 }
 
 /// Largest feed override factor (FMU input `feedOverride`, 0 … this).
-pub use crate::plan::MAX_FEED_OVERRIDE;
+pub const MAX_FEED_OVERRIDE: f64 = 2.0;
 
 /// The declared range (SI) of an FMU variable by its name (`machine.…`, `x.maxJerk`,
 /// `y.servo.kv`, `feedOverride`, `z.loadForce`, …), for `min`/`max` in the modelDescription;

@@ -307,7 +307,7 @@ mod tests {
     use super::*;
     use crate::feed::FeedLaw;
 
-    use crate::config::MM;
+    use crate::si::MM;
 
     /// Seed 001 first example (t_v > t_a > t_j) and second (t_v ≤ t_a < t_j), in SI.
     fn case1() -> Limits {

@@ -229,7 +229,7 @@ mod tests {
     use super::*;
     use crate::feed::FeedLaw;
 
-    use crate::config::MM;
+    use crate::si::MM;
 
     fn lim() -> Limits {
         // Seed 002 §III: v_f = 60 mm/s, a_max = 3000 mm/s², J = 200 m/s³.

@@ -11,7 +11,7 @@ mod reader;
 pub mod source;
 pub mod words;
 
-pub use reader::{Reader, DEFAULT_ARC_TOLERANCE_M};
+pub use reader::Reader;
 pub use source::ProgramSource;
 
 use crate::geometry::{Arc, Line, Plane, Source};

@@ -20,18 +20,16 @@ use super::params::Params;
 use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
 use super::words::{split_with, Sets, Word};
 use super::{Block, Motion, PathMode, StopKind};
-use crate::config::{CutterCorner, NcSetup};
+use crate::config::{CutterCorner, NcSetup, DEFAULT_ARC_TOLERANCE_M};
 use crate::error::ProgramError;
 use crate::geometry::Plane;
 use crate::Vec3;
 use modal::Mode;
 use serde::{Deserialize, Serialize};
 
-/// Arc end points may disagree with the centre by the machine's `arc_radius_tolerance_mm`
-/// (default 0.028 mm, LinuxCNC's CENTER_ARC_RADIUS_TOLERANCE; in G20 programs 2.54 times that,
-/// 0.0028 in, LinuxCNC's inch value) or by this share of the radius; an arc is refused only when
-/// it exceeds both.
-pub const DEFAULT_ARC_TOLERANCE_M: f64 = 0.028e-3;
+/// Share of the radius by which arc end points may disagree with the centre, beside the machine's
+/// `arc_radius_tolerance_mm` (`config::DEFAULT_ARC_TOLERANCE_M`); an arc is refused only when it
+/// exceeds both.
 const ARC_TOLERANCE_REL: f64 = 1e-3;
 
 /// `%` demarcation (LinuxCNC G-code overview, "File Requirements"): a program whose first

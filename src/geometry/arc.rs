@@ -191,7 +191,7 @@ mod tests {
     }
     use std::f64::consts::PI;
 
-    use crate::config::MM;
+    use crate::si::MM;
 
     #[test]
     fn quarter_circle_end_points_and_derivatives() {

@@ -247,8 +247,8 @@ pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::MM;
     use crate::geometry::Plane;
+    use crate::si::MM;
 
     #[test]
     fn chord_error_limit_r10_delta1um() {

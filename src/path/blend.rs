@@ -105,7 +105,7 @@ mod tests {
     use super::*;
     use crate::geometry::{dot, sub};
 
-    const MM: f64 = 1e-3;
+    use crate::si::MM;
 
     fn corner_90() -> Blend {
         let d_in = [1.0, 0.0, 0.0];

@@ -171,7 +171,7 @@ mod tests {
     use super::*;
     use crate::path::Segment;
 
-    const MM: f64 = 1e-3;
+    use crate::si::MM;
 
     #[test]
     fn corner_feed_90_degrees_is_a_t() {

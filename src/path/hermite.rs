@@ -249,7 +249,7 @@ mod tests {
     use crate::geometry::norm;
     use crate::path::Blend;
 
-    const MM: f64 = 1e-3;
+    use crate::si::MM;
 
     fn line_jet(p: Vec3, d: Vec3) -> Jet {
         Jet {

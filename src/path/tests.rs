@@ -1,9 +1,9 @@
 //! Builder-level tests: corner rules, continuity, limits and length conservation.
 
 use super::*;
-use crate::config::MM;
 use crate::gcode::StopKind;
 use crate::geometry::{add, norm, scale, Plane};
+use crate::si::MM;
 const FEED: f64 = 6000.0 / 60.0 * MM;
 
 /// The seed-004 corner mode these tests are about (the default is `smooth`, tests/cam_programs.rs).

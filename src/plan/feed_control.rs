@@ -12,6 +12,7 @@
 //! path until the release, which plans it again from where the path stopped.
 
 use super::{Planned, Planner};
+use crate::config::ranges::MAX_FEED_OVERRIDE;
 use crate::config::Machine;
 use crate::feed::{self, BlockRequest, FeedLaw, Kin, Profile, ProfileKind};
 use crate::path::{PathBlock, Segment};
@@ -46,9 +47,6 @@ pub enum Replan {
     /// is in the new queue).
     Done { cut: bool },
 }
-
-/// Largest feed override factor (the FMU input `feedOverride` declares 0 … this).
-pub const MAX_FEED_OVERRIDE: f64 = 2.0;
 
 /// Feed override and hold state between ticks.
 #[derive(Clone, Debug, Serialize, Deserialize)]

@@ -16,7 +16,7 @@
 //! its first half emitted, so each block costs O(1) profile solves amortised.
 
 mod feed_control;
-pub use feed_control::{FeedControl, Here, Replan, MAX_FEED_OVERRIDE};
+pub use feed_control::{FeedControl, Here, Replan};
 
 use crate::feed::bands::Banded;
 use crate::feed::scurve7_banded;

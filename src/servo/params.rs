@@ -143,7 +143,7 @@ macro_rules! p {
 }
 
 const RPM: f64 = 2.0 * std::f64::consts::PI / 60.0;
-const MM: f64 = 1e-3;
+use crate::si::MM;
 
 /// Every drive parameter. Ranges (SI) are wide enough for any real feed drive and narrow enough
 /// that no value can make the matrix exponential or the sub-stepping run away.

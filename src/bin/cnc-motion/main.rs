@@ -12,7 +12,7 @@ use std::process::ExitCode;
 mod run;
 mod summary;
 
-const MM: f64 = 1e-3;
+use cnc_motion::si::MM;
 
 #[derive(Parser)]
 #[command(

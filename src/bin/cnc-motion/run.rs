@@ -15,7 +15,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-const MM: f64 = 1e-3;
+use cnc_motion::si::MM;
 
 #[derive(Args)]
 pub struct RunArgs {
