@@ -8,6 +8,7 @@ mod arc;
 mod line;
 mod plane;
 mod source;
+pub mod vec2;
 mod vec3;
 
 pub use arc::Arc;

@@ -13,23 +13,7 @@ const MEASURED_SHARE: f64 = 0.75;
 /// Most halvings of one initial piece.
 const MAX_DEPTH: u32 = 40;
 
-type P2 = [f64; 2];
-
-fn sub(a: P2, b: P2) -> P2 {
-    [a[0] - b[0], a[1] - b[1]]
-}
-fn dot(a: P2, b: P2) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-fn cross(a: P2, b: P2) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-fn norm(a: P2) -> f64 {
-    a[0].hypot(a[1])
-}
-fn along(p: P2, t: P2, s: f64) -> P2 {
-    [p[0] + s * t[0], p[1] + s * t[1]]
-}
+use crate::geometry::vec2::{along, angle, cross, dot, norm, sub, P2};
 
 /// One piece of the approximation, from the end of the previous one.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,10 +55,6 @@ impl Piece {
             }
         }
     }
-}
-
-fn angle(c: P2, p: P2) -> f64 {
-    (p[1] - c[1]).atan2(p[0] - c[0])
 }
 
 fn segment_distance(a: P2, b: P2, q: P2) -> f64 {

@@ -6,11 +6,12 @@
 //! goes to its programmed point. Inside corners: intersection of the offset elements; outside
 //! corners: a transition arc about the corner (G450) or the tangents extended (G451).
 
-use super::comp_geom::{add, cross, dist, dot, intersect, Curve, Elem, JOIN, P2};
+use super::comp_geom::{intersect, Curve, Elem, JOIN};
 use super::Reader;
 use crate::config::CutterCorner;
 use crate::error::ProgramError;
 use crate::gcode::{check, Block, Motion, StopKind};
+use crate::geometry::vec2::{along, cross, dist, dot, P2};
 use crate::geometry::Plane;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -294,7 +295,7 @@ impl Reader {
             let x = intersect(&Curve::Line(p1, t1), &Curve::Line(p2, t2), c).unwrap_or(p1);
             (x, x)
         } else {
-            (add(p1, t1, r), add(p2, t2, -r))
+            (along(p1, t1, r), along(p2, t2, -r))
         };
         let is_line = |e: &Elem| matches!(e, Elem::Line { .. });
         let line_to = |reader: &mut Reader, p: P2| {

@@ -6,31 +6,7 @@
 //! joins it has to accept: a 1 µm tool refused paths that 0 and 0.1 mm tools run).
 
 use crate::gcode::{Block, Motion};
-
-pub type P2 = [f64; 2];
-
-pub fn sub(p: P2, q: P2) -> P2 {
-    [p[0] - q[0], p[1] - q[1]]
-}
-pub fn add(p: P2, q: P2, s: f64) -> P2 {
-    [p[0] + s * q[0], p[1] + s * q[1]]
-}
-pub fn dot(p: P2, q: P2) -> f64 {
-    p[0] * q[0] + p[1] * q[1]
-}
-pub fn cross(p: P2, q: P2) -> f64 {
-    p[0] * q[1] - p[1] * q[0]
-}
-pub fn norm(p: P2) -> f64 {
-    p[0].hypot(p[1])
-}
-pub fn dist(p: P2, q: P2) -> f64 {
-    norm(sub(p, q))
-}
-/// Left normal of a unit tangent.
-pub fn left(t: P2) -> P2 {
-    [-t[1], t[0]]
-}
+use crate::geometry::vec2::{along, angle, cross, dist, dot, left, norm, sub, P2};
 
 /// A programmed element in the plane: a line or an arc (centre, radius, clockwise).
 #[derive(Clone, Copy, Debug)]
@@ -119,7 +95,7 @@ impl Elem {
 
     /// The offset of point `p` (start or end) of the element.
     pub fn offset_point(&self, p: P2, side: f64, r: f64) -> P2 {
-        add(p, left(self.tangent(p)), side * r)
+        along(p, left(self.tangent(p)), side * r)
     }
 }
 
@@ -154,8 +130,7 @@ pub const JOIN: f64 = 1e-9;
 
 /// Angle swept from `p` to `q` about `c` (0 … 2π), clockwise or not.
 fn sweep(c: P2, p: P2, q: P2, cw: bool) -> f64 {
-    let a = (p[1] - c[1]).atan2(p[0] - c[0]);
-    let b = (q[1] - c[1]).atan2(q[0] - c[0]);
+    let (a, b) = (angle(c, p), angle(c, q));
     let s = if cw { a - b } else { b - a };
     s.rem_euclid(std::f64::consts::TAU)
 }
@@ -175,7 +150,7 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
                 return None;
             }
             let s = cross(sub(*q, *p), *u) / den;
-            vec![add(*p, *t, s)]
+            vec![along(*p, *t, s)]
         }
         (Curve::Line(p, t), Curve::Circle(c, r)) | (Curve::Circle(c, r), Curve::Line(p, t)) => {
             let f = sub(*p, *c);
@@ -186,7 +161,7 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
                 return None;
             }
             let h = disc.max(0.0).sqrt();
-            vec![add(*p, *t, -b - h), add(*p, *t, -b + h)]
+            vec![along(*p, *t, -b - h), along(*p, *t, -b + h)]
         }
         (Curve::Circle(c1, r1), Curve::Circle(c2, r2)) => {
             let d = dist(*c1, *c2);
@@ -196,8 +171,8 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
             let x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
             let h = (r1 * r1 - x * x).max(0.0).sqrt();
             let u = [(c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d];
-            let m = add(*c1, u, x);
-            vec![add(m, left(u), h), add(m, left(u), -h)]
+            let m = along(*c1, u, x);
+            vec![along(m, left(u), h), along(m, left(u), -h)]
         }
     };
     points
