@@ -1,4 +1,5 @@
-//! Named tolerances outside the path and plan stages (those keep their own for now). The feed laws'
+//! Named tolerances of the engine, the plan and the drives. The path stage keeps its own in
+//! [`crate::path::tolerance`], cutter compensation in `gcode/reader/comp_geom.rs`; the feed laws'
 //! solver bounds and residuals are in [`crate::feed::tolerance`].
 
 pub use crate::feed::tolerance as feed;

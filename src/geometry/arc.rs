@@ -61,7 +61,7 @@ impl Arc {
         let mut sweep = if clockwise { ang0 - ang1 } else { ang1 - ang0 };
         sweep = sweep.rem_euclid(TAU);
         // Same start and end (to rounding): a full circle.
-        if chord_len <= 1e-12 * radius || sweep <= 1e-12 {
+        if chord_len <= FULL_CIRCLE * radius || sweep <= FULL_CIRCLE {
             sweep = TAU;
         }
         sweep += TAU * turns as f64;
@@ -177,6 +177,9 @@ impl Arc {
     }
 }
 
+/// An arc whose chord is at most this share of its radius, or whose sweep is at most this (rad),
+/// ends where it starts: a full circle (G2/G3 with the end at the start).
+const FULL_CIRCLE: f64 = 1e-12;
 /// Largest stretch of an arc in one cell (rad), and most cells per arc.
 const CELL_ANGLE: f64 = std::f64::consts::PI / 16.0;
 const MAX_CELLS: usize = 256;

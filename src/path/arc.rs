@@ -2,6 +2,7 @@
 //! limit of seed 003.
 
 use super::budget::Budget;
+use super::tolerance::NEGLIGIBLE;
 use crate::config::Machine;
 use crate::feed::bands::{Band, Bands, MAX_BANDS};
 use crate::feed::Limits;
@@ -23,22 +24,22 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
     let (mut d2n, mut d3n): (f64, f64) = (0.0, 0.0);
     for (i, ax) in machine.axes.iter().enumerate() {
         let [d1, d2, d3] = [bounds[0][i], bounds[1][i], bounds[2][i]];
-        if d1 > 1e-12 {
+        if d1 > NEGLIGIBLE {
             v = v.min(ax.max_velocity / d1);
         }
-        if d2 > 1e-12 {
+        if d2 > NEGLIGIBLE {
             v = v.min((ax.max_acceleration / d2).sqrt());
         }
-        if d3 > 1e-12 {
+        if d3 > NEGLIGIBLE {
             v = v.min((ax.max_jerk / d3).cbrt());
         }
         d2n = d2n.max(d2);
         d3n = d3n.max(d3);
     }
-    if let (Some(a), true) = (machine.max_path_acceleration, d2n > 1e-12) {
+    if let (Some(a), true) = (machine.max_path_acceleration, d2n > NEGLIGIBLE) {
         v = v.min((a / d2n).sqrt());
     }
-    if let (Some(j), true) = (machine.max_path_jerk, d3n > 1e-12) {
+    if let (Some(j), true) = (machine.max_path_jerk, d3n > NEGLIGIBLE) {
         v = v.min((j / d3n).cbrt());
     }
     v
@@ -111,7 +112,7 @@ impl Frame {
             .min(v_cap);
         let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
         for (i, ax) in machine.axes.iter().enumerate() {
-            if b[0][i] > 1e-12 {
+            if b[0][i] > NEGLIGIBLE {
                 a_free = a_free.min(ax.max_acceleration / b[0][i]);
                 j_free = j_free.min(ax.max_jerk / b[0][i]);
             }

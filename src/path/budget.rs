@@ -3,18 +3,10 @@
 //! (`curve_limits` in arc.rs), and the largest v at which both keep their shares — each
 //! constraint is monotone in v and solved in closed form.
 
+use super::tolerance::{FIT_STEPS, NEGLIGIBLE, SHARE_SLACK};
 use crate::config::Machine;
 use crate::feed::roots::cubic_pos;
 use crate::Vec3;
-
-/// Derivative bounds below which an axis counts as not moving along the curve (|p'|) or as not
-/// curving (|p''|·v).
-const NEGLIGIBLE: f64 = 1e-12;
-/// Relative amount by which A_c and J_c may fall short of their shares (rounding).
-const SHARE_SLACK: f64 = 1e-9;
-/// Relative steps (doubling from one ulp) that bring a closed-form speed back inside the budget
-/// as evaluated, when rounding puts it a hair outside.
-const FIT_STEPS: usize = 64;
 
 /// The budgets of one curve: cells of per-axis bounds (|p'|, |p''|, |p'''|) over its parameter,
 /// A_c at most `a_cap`, and the shares A_c ≥ `a_min`, J_c ≥ `j_min` the tangential law keeps.

@@ -2,6 +2,7 @@
 //! within the coordinate range, arcs no longer than the turns a program may ask for, chains,
 //! parts and transitions consistent, speeds and limits positive.
 
+use super::tolerance::{BOUND_ROUNDING, LENGTH_ROUNDING};
 use super::{Blend, Chain, Curve, Hermite, Move, PathBlock, PathBuilder, Piece, Segment, Whole};
 use crate::config::Machine;
 use crate::gcode::check::{MAX_COORDINATE_M, MAX_DWELL_S, MAX_TURNS};
@@ -56,7 +57,7 @@ fn piece(p: &Piece) -> Check {
     curve(&p.curve)?;
     let length = p.curve.length();
     within("piece start", p.u0, 0.0, length)?;
-    within("piece end", p.u1, p.u0, length * (1.0 + 1e-12))
+    within("piece end", p.u1, p.u0, length * (1.0 + BOUND_ROUNDING))
 }
 
 fn chain(c: &Chain) -> Check {
@@ -112,7 +113,12 @@ impl Segment {
                 whole(w)?;
                 let total = w.length();
                 within("part start", *s0, 0.0, total)?;
-                within("part length", *len, 0.0, (total - s0) * (1.0 + 1e-12) + 1e-15)
+                within(
+                    "part length",
+                    *len,
+                    0.0,
+                    (total - s0) * (1.0 + BOUND_ROUNDING) + LENGTH_ROUNDING,
+                )
             }
         }
     }

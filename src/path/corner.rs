@@ -2,6 +2,7 @@
 //! eq. 10 curvature-change speed at tangent junctions, and the quintic transition (blend.rs).
 
 use super::arc::{chord_error_speed, constant_speed_limit};
+use super::tolerance::{COLLINEAR_EPS, NEGLIGIBLE, REVERSAL_COS};
 use super::{arc_limits, line_limits, PathBlock, Segment};
 use crate::config::{CornerMode, Machine};
 #[cfg(test)]
@@ -9,14 +10,6 @@ use crate::geometry::norm;
 use crate::geometry::Arc;
 use crate::geometry::{add, cross, dot, scale, sub, unit};
 use crate::Vec3;
-
-/// Turns sharper than this (cos of the turning angle below it) stop exactly: the transition
-/// would be a near-cusp whose speed limit is practically zero anyway.
-pub const REVERSAL_COS: f64 = -0.996;
-/// Directions closer than this (1 − cos θ) are one direction: no corner.
-pub const COLLINEAR_EPS: f64 = 1e-12;
-/// Tangent-continuous junction (1 − cos θ) involving arcs.
-pub const TANGENT_EPS: f64 = 1e-9;
 
 /// Seed 003: at a corner of turning angle θ (between the two directions), each axis may change
 /// its speed by A·T within one interpolation period T, giving F_c = A·T/(1 − cos θ); the smallest
@@ -28,7 +21,7 @@ pub fn corner_feed(d_in: Vec3, d_out: Vec3, machine: &Machine) -> f64 {
     }
     let mut f = f64::INFINITY;
     for (i, ax) in machine.axes.iter().enumerate() {
-        if d_in[i].abs() > 1e-12 || d_out[i].abs() > 1e-12 {
+        if d_in[i].abs() > NEGLIGIBLE || d_out[i].abs() > NEGLIGIBLE {
             f = f.min(ax.max_acceleration * machine.interpolation_period / one_minus_cos);
         }
     }
@@ -43,7 +36,7 @@ pub fn corner_feed(d_in: Vec3, d_out: Vec3, machine: &Machine) -> f64 {
 pub fn curvature_change_speed(dk: Vec3, step_jerk: Vec3, period: f64) -> f64 {
     let mut v2 = f64::INFINITY;
     for i in 0..3 {
-        if dk[i].abs() > 1e-12 {
+        if dk[i].abs() > NEGLIGIBLE {
             v2 = v2.min(step_jerk[i].max(0.0) * period / dk[i].abs());
         }
     }

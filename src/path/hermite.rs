@@ -8,6 +8,7 @@
 //! and evaluated in u: the planner runs the feed law in u and the chain rule uses p', p'', p'''
 //! w.r.t. u, so no arc-length inversion is needed and the derivative bounds are polynomial bounds.
 
+use super::tolerance::{BOUND_ROUNDING, END_CHECK, MAX_TERM};
 use crate::geometry::{add, norm, scale, sub, Geo};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -83,7 +84,7 @@ impl Hermite {
             lk *= self.lambda;
             for i in 0..3 {
                 let term = c[i] * lk;
-                if term.is_nan() || term.abs() > 1e6 * scale {
+                if term.is_nan() || term.abs() > MAX_TERM * scale {
                     return Err(format!(
                         "a curve's power term {term:e} for a length of {scale:e} m"
                     ));
@@ -91,7 +92,7 @@ impl Hermite {
                 sum[i] += term;
             }
         }
-        if norm(sub(sum, d)) > 1e-9 * scale {
+        if norm(sub(sum, d)) > END_CHECK * scale {
             return Err("a curve does not end at its end point".into());
         }
         Ok(())
@@ -176,7 +177,7 @@ impl Hermite {
                         rk *= r / (k + 1) as f64;
                     }
                     // Relative guard for the rounding of the sums above.
-                    bound[i] = sum * (1.0 + 1e-12);
+                    bound[i] = sum * (1.0 + BOUND_ROUNDING);
                 }
             }
             take(b);
@@ -219,7 +220,7 @@ impl Hermite {
             }
             bound = bound.max(sum);
         }
-        (bound * (1.0 + 1e-12)).sqrt()
+        (bound * (1.0 + BOUND_ROUNDING)).sqrt()
     }
 
     /// Bézier control points (τ-form): the curve lies in their convex hull.

@@ -5,10 +5,10 @@
 
 use super::chain::Curve;
 use super::chain::{piece_limits, CurveLimits};
-use super::corner::REVERSAL_COS;
 use super::hermite::Hermite;
 use super::slowest_axis;
-use super::smooth::{jet_at, Span, MIN_PIECE};
+use super::smooth::{jet_at, Span};
+use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
 use crate::config::Machine;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
 use crate::geometry::Source;
@@ -73,7 +73,7 @@ pub(super) fn transition(held: &Span, next: &Span, m: &Machine) -> Option<(f64, 
         (Curve::Line(_), Curve::Line(_), Source::Line(_), Source::Line(_))
     );
     for _ in 0..MAX_SHRINKS {
-        if d.is_nan() || d <= MIN_PIECE {
+        if d.is_nan() || d <= MIN_LENGTH {
             return None;
         }
         let a = jet_at(&held.piece, held.piece.length() - d);

@@ -1,5 +1,6 @@
 //! Path limits of straight lines (seed 004 eq. 11).
 
+use super::tolerance::NEGLIGIBLE;
 use crate::config::Machine;
 use crate::feed::Limits;
 use crate::Vec3;
@@ -15,7 +16,7 @@ pub fn line_limits(u: Vec3, machine: &Machine) -> Limits {
     };
     for (ui, ax) in u.iter().zip(&machine.axes) {
         let k = ui.abs();
-        if k > 1e-12 {
+        if k > NEGLIGIBLE {
             lim.v_max = lim.v_max.min(ax.max_velocity / k);
             lim.a_max = lim.a_max.min(ax.max_acceleration / k);
             lim.j_max = lim.j_max.min(ax.max_jerk / k);

@@ -16,6 +16,7 @@ use crate::feed::Limits;
 use crate::gcode::{Block, Motion, PathMode};
 use crate::geometry::{dot, sub, unit, Arc, Geo, Line, Source, Vec3};
 use serde::{Deserialize, Serialize};
+use tolerance::{COLLINEAR_EPS, END_SHARE, MIN_LENGTH, REVERSAL_COS, TANGENT_EPS};
 
 mod arc;
 mod blend;
@@ -30,6 +31,7 @@ mod merge;
 mod micro;
 mod smooth;
 mod source_map;
+pub mod tolerance;
 
 pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, Shares};
 pub use blend::Blend;
@@ -112,7 +114,7 @@ impl Segment {
             Segment::Part { whole, s0, .. } => (whole.clone(), *s0, whole.length() - s0),
             Segment::Dwell { .. } => return None,
         };
-        let to_end = from + len >= to_end_of_whole * (1.0 - 1e-15) && self.ends_whole();
+        let to_end = from + len >= to_end_of_whole * (1.0 - END_SHARE) && self.ends_whole();
         Some(Segment::Part {
             whole,
             s0: s0 + from,
@@ -233,8 +235,6 @@ pub struct PathBlock {
     pub bands: Bands,
 }
 
-/// Moves shorter than this (m) are dropped.
-const MIN_LENGTH: f64 = 1e-12;
 /// Largest share of a programmed line a constant-speed transition may replace at one end.
 const TRANSITION_SHARE: f64 = 0.4;
 
@@ -417,7 +417,7 @@ impl PathBuilder {
         );
         let v_end_max = if exact {
             0.0
-        } else if lines && 1.0 - cos <= corner::COLLINEAR_EPS {
+        } else if lines && 1.0 - cos <= COLLINEAR_EPS {
             feeds
         } else if lines && m.corner == CornerMode::AccelerationPeriod {
             corner_feed(t_in, t_out, m).min(feeds)
@@ -431,7 +431,7 @@ impl PathBuilder {
                 return;
             }
             0.0
-        } else if 1.0 - cos <= corner::TANGENT_EPS {
+        } else if 1.0 - cos <= TANGENT_EPS {
             corner::tangent_junction(sub(g_out.d2, g_in.d2), &mut held.block, &mut next.block, m).min(feeds)
         } else if m.corner == CornerMode::AccelerationPeriod {
             // Seed 003's rule allows the velocity step of one period at the corner.
@@ -510,7 +510,7 @@ impl PathBuilder {
         feeds: f64,
     ) -> Option<(Segment, f64)> {
         let m = &self.machine;
-        if dot(t_in, t_out) < corner::REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
+        if dot(t_in, t_out) < REVERSAL_COS || max_cut.is_nan() || max_cut <= MIN_LENGTH {
             return None;
         }
         let (segment, v) = if m.corner == CornerMode::Circular {

@@ -23,6 +23,7 @@ use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::transition;
 use super::source_map;
+use super::tolerance::{COLLINEAR_SIN2, JOINT_D1_EPS, JOINT_D2_EPS, KNOT_SLACK, MIN_LENGTH};
 use super::{line_limits, max_bounds, PathBlock, Segment};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
@@ -35,10 +36,6 @@ use serde::{Deserialize, Serialize};
 /// Largest turning angle at a smooth vertex (cos), and longest segment smoothed.
 const SMOOTH_MIN_COS: f64 = 0.866_025_403_784_438_6; // 30°
 const SMOOTH_MAX_SEGMENT: f64 = 5e-3;
-/// Pieces joined with first derivatives this close and second derivatives this close (1/m)
-/// need no transition.
-const JOINT_D1_EPS: f64 = 1e-9;
-const JOINT_D2_EPS: f64 = 1e-3;
 /// Share of the tolerance a fitted span may use: a span that needs all of it fits badly (its
 /// curvature swings), and splitting it is faster to run.
 const SPAN_SHARE: f64 = 0.7;
@@ -51,8 +48,6 @@ const KNOT_LENGTH: f64 = 2e-3;
 const RUN_MAX: usize = 1024;
 /// Pieces at most in one chain.
 const CHAIN_MAX_PIECES: usize = 512;
-/// Shorter pieces are dropped (m).
-pub(super) const MIN_PIECE: f64 = 1e-12;
 
 /// A programmed move as the builder receives it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -75,7 +70,7 @@ fn circle_jet(a: Vec3, b: Vec3, c: Vec3) -> (Vec3, Vec3) {
     let n = cross(u, w);
     let n2 = dot(n, n);
     let chord = sub(c, a);
-    if n2 <= 1e-30 * dot(u, u) * dot(w, w) {
+    if n2 <= COLLINEAR_SIN2 * dot(u, u) * dot(w, w) {
         return (unit(chord), [0.0; 3]);
     }
     // Circumcentre relative to b: ((|u|²·w − |w|²·u) × n) / (2|n|²).
@@ -399,7 +394,7 @@ impl SmoothBuilder {
         m: &Machine,
         out: &mut Vec<PathBlock>,
     ) {
-        if piece.length() > MIN_PIECE {
+        if piece.length() > MIN_LENGTH {
             let mut cells = Vec::new();
             piece.curve.cells(|c| cells.push(c));
             let straight = matches!(piece.curve, Curve::Line(_));
@@ -592,7 +587,7 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
     for (i, mv) in run.iter().enumerate() {
         acc += mv.source.length();
         let next_target = total * knots.len() as f64 / spans as f64;
-        if i + 1 < run.len() && acc >= next_target * (1.0 - 1e-9) {
+        if i + 1 < run.len() && acc >= next_target * (1.0 - KNOT_SLACK) {
             knots.push(i + 1);
         }
     }

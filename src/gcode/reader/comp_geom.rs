@@ -1,9 +1,10 @@
 //! Plane geometry of cutter compensation: offset elements (lines and arcs in the active plane)
-//! and their intersections. Points are (a, b) in the plane's axes (`Plane::axes`). Every
-//! tolerance is a length, JOIN: two offset points nearer than it are one point, an element may
-//! start that far from its ideal start and run that far past its end. An angle tolerance would
-//! be a length that shrinks with the radius (1e-9 rad is 3e-12 m on a 3 mm arc, smaller than the
-//! joins it has to accept: a 1 µm tool refused paths that 0 and 0.1 mm tools run).
+//! and their intersections. Points are (a, b) in the plane's axes (`Plane::axes`). The stage's
+//! tolerances are named here (JOIN, PARALLEL, CONCENTRIC). Every one that decides a join is a
+//! length, JOIN: two offset points nearer than it are one point, an element may start that far
+//! from its ideal start and run that far past its end. An angle tolerance would be a length
+//! that shrinks with the radius (1e-9 rad is 3e-12 m on a 3 mm arc, smaller than the joins it
+//! has to accept: a 1 µm tool refused paths that 0 and 0.1 mm tools run).
 
 use crate::gcode::{Block, Motion};
 use crate::geometry::vec2::{along, angle, cross, dist, dot, left, norm, sub, P2};
@@ -127,6 +128,11 @@ impl Elem {
 
 /// The length tolerance of cutter compensation (m): 1 nm.
 pub const JOIN: f64 = 1e-9;
+/// Offset lines whose unit tangents cross by less than this (sin θ) are parallel: they have no
+/// intersection (collinear elements meet by JOIN instead).
+const PARALLEL: f64 = 1e-12;
+/// Offset circles whose centres are nearer than this (m) are concentric: no intersection.
+const CONCENTRIC: f64 = 1e-12;
 
 /// Angle swept from `p` to `q` about `c` (0 … 2π), clockwise or not.
 fn sweep(c: P2, p: P2, q: P2, cw: bool) -> f64 {
@@ -146,7 +152,7 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
     let points: Vec<P2> = match (c1, c2) {
         (Curve::Line(p, t), Curve::Line(q, u)) => {
             let den = cross(*t, *u);
-            if den.abs() < 1e-12 {
+            if den.abs() < PARALLEL {
                 return None;
             }
             let s = cross(sub(*q, *p), *u) / den;
@@ -165,7 +171,7 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
         }
         (Curve::Circle(c1, r1), Curve::Circle(c2, r2)) => {
             let d = dist(*c1, *c2);
-            if d < 1e-12 || d > r1 + r2 + JOIN || d < (r1 - r2).abs() - JOIN {
+            if d < CONCENTRIC || d > r1 + r2 + JOIN || d < (r1 - r2).abs() - JOIN {
                 return None;
             }
             let x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
