@@ -56,6 +56,15 @@ const fn optional(r: Range) -> Range {
 
 use super::{MM, MM_MIN};
 
+/// Largest |coordinate| of an axis position, a centre offset (I/J/K), a radius (R), a G64
+/// tolerance, a tool length, work offset or home position: 100 m, far beyond any machine table,
+/// far below where metres lose sub-µm precision (programs: `gcode::check`).
+pub const MAX_COORDINATE_M: f64 = 100.0;
+/// Largest feed any machine runs, the top of `max_feed_mm_min` and of the axes'
+/// `max_velocity_mm_min`: 1 000 000 mm/min (16.7 m/s). A larger F is not an error: as on an NC,
+/// it runs at the machine's largest feed.
+pub const MAX_FEED_MM_MIN: f64 = 1e6;
+
 /// Machine keys (SI ranges; `factor` converts the file's unit).
 pub const MACHINE: &[Range] = &[
     r(
@@ -95,7 +104,7 @@ pub const MACHINE: &[Range] = &[
         "max_feed_mm_min",
         "machine.maxFeed",
         MM_MIN,
-        1e6 * MM_MIN,
+        MAX_FEED_MM_MIN * MM_MIN,
         MM_MIN,
         "mm/min",
     ),
@@ -132,7 +141,7 @@ pub const AXIS: &[Range] = &[
         "max_velocity_mm_min",
         "maxVelocity",
         MM_MIN,
-        1e6 * MM_MIN,
+        MAX_FEED_MM_MIN * MM_MIN,
         MM_MIN,
         "mm/min",
     ),
@@ -152,7 +161,7 @@ pub const AXIS: &[Range] = &[
 /// `[work_offset.*]` and home positions `[home.*]` within ±100 000 mm (the coordinate range).
 pub const MAX_TOOL: u32 = 9_999;
 pub const MAX_TOOL_RADIUS_M: f64 = 1.0;
-pub const MAX_OFFSET_M: f64 = 100.0;
+pub const MAX_OFFSET_M: f64 = MAX_COORDINATE_M;
 
 /// Largest |loadForce| input (N).
 pub const MAX_LOAD_FORCE_N: f64 = 1e7;

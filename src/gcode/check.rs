@@ -2,12 +2,8 @@
 //! are checked where they are read, in the program's units, so the message names what was
 //! written; anything outside is `FILE:LINE:COL: … out of range (…)`.
 
-/// Largest |coordinate| of an axis position, a centre offset (I/J/K), a radius (R) or a G64
-/// tolerance: 100 m, far beyond any machine table, far below where metres lose sub-µm precision.
-pub const MAX_COORDINATE_M: f64 = 100.0;
-/// Largest feed any machine runs (the top of `max_feed_mm_min`): 1 000 000 mm/min (16.7 m/s).
-/// A larger F is not an error: as on an NC, it runs at the machine's largest feed.
-pub const MAX_FEED_MM_MIN: f64 = 1e6;
+/// Largest |coordinate| and largest feed: the machine's ranges (config/ranges.rs).
+pub use crate::config::ranges::{MAX_COORDINATE_M, MAX_FEED_MM_MIN};
 pub const MAX_FEED_M_S: f64 = MAX_FEED_MM_MIN * 1e-3 / 60.0;
 /// Longest move at its programmed feed (length / F, or 1/F minutes in G93): one day, as the
 /// longest dwell. A slower move is refused before it starts instead of running for days.
