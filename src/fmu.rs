@@ -45,10 +45,16 @@ impl fmi2::Model for CncMotionFmu {
         INFO.get_or_init(|| {
             let description =
                 "CNC motion controller: G-code to jerk-limited axis motion through servo drives";
+            let info =
+                fmi2::crate_model_info!(model::MODEL_NAME, description, fmi2::table::variables(table()));
             ModelInfo {
                 enumerations: model::enumerations(),
                 default_experiment: (0.0, default_stop_time(), 1e-6, 0.001),
-                ..fmi2::crate_model_info!(model::MODEL_NAME, description, fmi2::table::variables(table()))
+                capabilities: fmi2::Capabilities {
+                    max_output_derivative_order: model::MAX_OUTPUT_DERIVATIVE_ORDER,
+                    ..info.capabilities
+                },
+                ..info
             }
         })
     }
@@ -76,6 +82,11 @@ impl fmi2::Model for CncMotionFmu {
 
     fn do_step(&mut self, h: f64) -> Result<(), String> {
         self.0.do_step(h)
+    }
+
+    fn output_derivative(&self, index: usize, order: u32) -> Option<f64> {
+        let e = &table()[index];
+        self.0.output_derivative(e.slot, e.axis, order)
     }
 
     /// The model version, then postcard of (parameters and inputs, program text and engine

@@ -19,6 +19,10 @@ use std::sync::Arc;
 
 pub const MODEL_NAME: &str = "CncMotion";
 
+/// Output derivatives the FMU gives (maxOutputDerivativeOrder): the command's, up to jerk from
+/// position ([`CncMotion::output_derivative`]).
+pub const MAX_OUTPUT_DERIVATIVE_ORDER: u32 = 3;
+
 /// The Enumeration types `Profile` and `Corner`: items 1…n in the order of the library's lists.
 pub fn enumerations() -> Vec<EnumerationType> {
     vec![
@@ -259,6 +263,22 @@ impl CncMotion {
                 }
             }),
             Slot::ContourError => real(&|e| e.outputs().contour_error),
+        }
+    }
+
+    /// The `order`-th time derivative of output `slot` on axis `i` where the feed law gives it
+    /// exactly: the command p, v, a, j are each the derivative of the one before (chain rule of
+    /// x(s(t)), interp::axis_motion), at the latest tick (the current time when the step is a
+    /// multiple of the interpolation period). None past jerk (the feed laws give no snap) and for
+    /// the other outputs: path.distance is the programmed length, which blends and chords cut.
+    pub fn output_derivative(&self, slot: Slot, i: usize, order: u32) -> Option<f64> {
+        let (Slot::Command(k), true) = (slot, order > 0) else {
+            return None;
+        };
+        let slot = Slot::Command(Some(k + order as usize).filter(|&d| d <= 3)?);
+        match self.get(slot, i) {
+            Value::Real(x) => Some(x),
+            _ => None,
         }
     }
 

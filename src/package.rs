@@ -101,6 +101,7 @@ pub fn write_fmu(path: &Path, platforms: &str) -> Result<(), String> {
     write_archive(
         path,
         &FmuFiles {
+            fmi_version: 2,
             model_identifier: &CncMotionFmu::info().model_identifier,
             model_description: &xml,
             binaries,
@@ -108,6 +109,7 @@ pub fn write_fmu(path: &Path, platforms: &str) -> Result<(), String> {
             documentation_html: &doc,
             extra,
             sources: sources()?,
+            terminals: None,
         },
     )
 }
