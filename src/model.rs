@@ -131,6 +131,21 @@ pub const ROWS: &[Row] = &[
     ("path.contourError",           REAL,    OUT, CONT, "m",    NO,   NO,        Slot::ContourError,     "distance of the actual tool point from the programmed path"),
 ];
 
+/// The FMI 3 terminal a tool wires to MachineStructure's (same name, `plug` rule): the drive
+/// forces out, the load forces in (arrays over x, y, z).
+pub fn terminals() -> Vec<fmi2::Terminal> {
+    vec![fmi2::Terminal {
+        name: "frame".into(),
+        kind: "org.cnc-motion.frameCoupling".into(),
+        description: "two-way coupling with a machine-structure model: drive forces out, load forces in"
+            .into(),
+        members: vec![
+            ("driveForce".into(), "driveForce".into()),
+            ("loadForce".into(), "loadForce".into()),
+        ],
+    }]
+}
+
 /// FMI type of a drive parameter, from its kind in the servo table.
 fn servo_type(kind: Kind) -> Type {
     match kind {
@@ -412,5 +427,33 @@ impl CncMotion {
         e.set_load_force(self.load_force);
         e.advance(h).map_err(|e| e.to_string())?;
         e.check_outputs()
+    }
+
+    /// [`CncMotion::do_step`] that ends early at the tick where the program finishes (FMI 3 early
+    /// return): the time advanced. Taken tick by tick (`Engine::step`, which is `advance` by one
+    /// period) from a tick over a whole number of ticks while the program runs and no hold is
+    /// set; otherwise, and for one tick, exactly `do_step`.
+    pub fn do_step_early(&mut self, h: f64) -> Result<f64, String> {
+        let period = self.machine.interpolation_period;
+        let e = self.engine.as_mut().ok_or("the model is not initialized")?;
+        let n = (h / period).round();
+        let at_tick = e.time() == e.ticks() as f64 * period;
+        let whole = n >= 2.0 && (n * period - h).abs() <= crate::tolerance::SAME_INSTANT_S;
+        if !(at_tick && whole) || e.finished() || self.feed_hold {
+            return self.do_step(h).map(|()| h);
+        }
+        e.set_feed_override(self.feed_override);
+        e.set_feed_hold(self.feed_hold);
+        e.set_load_force(self.load_force);
+        let n = n as u64;
+        for k in 1..=n {
+            e.step().map_err(|e| e.to_string())?;
+            if e.finished() && k < n {
+                e.check_outputs()?;
+                return Ok(k as f64 * period);
+            }
+        }
+        e.check_outputs()?;
+        Ok(h)
     }
 }

@@ -201,7 +201,21 @@ impl fmi2::Model for MachineStructureFmu {
                 provides_directional_derivative: true,
                 ..info.capabilities
             };
-            ModelInfo { capabilities, ..info }
+            // CncMotion's terminal of the same name (`plug`): drive forces in, load forces out.
+            let terminals = vec![fmi2::Terminal {
+                name: "frame".into(),
+                kind: "org.cnc-motion.frameCoupling".into(),
+                description: "two-way coupling with the axis drives: drive forces in, load forces out".into(),
+                members: vec![
+                    ("driveForce".into(), "driveForce".into()),
+                    ("loadForce".into(), "loadForce".into()),
+                ],
+            }];
+            ModelInfo {
+                capabilities,
+                terminals,
+                ..info
+            }
         })
     }
 
@@ -304,14 +318,19 @@ pub fn model_description() -> String {
     fmi2::model_description::<MachineStructureFmu>()
 }
 
-/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/), the fmi2 crate and
-/// the lock file.
+/// sources/: this crate (its manifest as a workspace root, fmi2 and fmi3 beside src/), the fmi2
+/// and fmi3 crates and the lock file.
 pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
     use fmi2::package::{manifest, sources_readme, tree};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("Cargo.toml")).map_err(|e| format!("Cargo.toml: {e}"))?;
-    let cargo = manifest(&text, &["[dev-dependencies]"], &[("../fmi2", "fmi2")]) + "\n[workspace]\n";
+    let cargo = manifest(
+        &text,
+        &["[dev-dependencies]"],
+        &[("../fmi2", "fmi2"), ("../fmi3", "fmi3")],
+    ) + "\n[workspace]\n";
     let fmi2_toml = std::fs::read(root.join("../fmi2/Cargo.toml")).map_err(|e| format!("fmi2: {e}"))?;
+    let fmi3_toml = std::fs::read(root.join("../fmi3/Cargo.toml")).map_err(|e| format!("fmi3: {e}"))?;
     // The workspace's lock: the versions the shipped binaries were built with (cargo drops the
     // entries this smaller workspace does not use).
     let lock = std::fs::read(root.join("../../Cargo.lock")).map_err(|e| format!("Cargo.lock: {e}"))?;
@@ -319,6 +338,7 @@ pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
         ("Cargo.toml".to_string(), cargo.into_bytes()),
         ("Cargo.lock".to_string(), lock),
         ("fmi2/Cargo.toml".to_string(), fmi2_toml),
+        ("fmi3/Cargo.toml".to_string(), fmi3_toml),
         sources_readme(
             "MachineStructure",
             "machine-structure",
@@ -328,10 +348,12 @@ pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
     ];
     files.extend(tree(&root.join("src"), "src")?);
     files.extend(tree(&root.join("../fmi2/src"), "fmi2/src")?);
+    files.extend(tree(&root.join("../fmi3/src"), "fmi3/src")?);
     Ok(files)
 }
 
-/// Write MachineStructure.fmu from the built shared libraries (by platform).
+/// Write MachineStructure.fmu from the built shared libraries (by platform), and beside it the
+/// FMI 3.0 archive ([`fmi3::archive_path`]) with the same binaries.
 pub fn write_fmu(
     path: &Path,
     binaries: Vec<(&'static fmi2::package::Platform, std::path::PathBuf)>,
@@ -347,20 +369,28 @@ pub fn write_fmu(
          Binaries: linux64 and win64; reference result of the default experiment (no input: at rest) \
          in <code>extra/org.fmi-standard.fmi-ls-ref/</code>; Rust sources in <code>sources/</code>.</p>",
     );
-    fmi2::package::write_fmu(
-        path,
-        &fmi2::package::FmuFiles {
-            fmi_version: 2,
-            model_identifier: "MachineStructure",
-            model_description: &xml,
-            binaries,
-            resources: Vec::new(),
-            documentation_html: &doc,
-            extra: fmi2::reference::files::<MachineStructureFmu>(None, 10)?,
-            sources: sources()?,
-            terminals: None,
-        },
-    )
+    let files = fmi2::package::FmuFiles {
+        fmi_version: 2,
+        model_identifier: "MachineStructure",
+        model_description: &xml,
+        binaries,
+        resources: Vec::new(),
+        documentation_html: &doc,
+        extra: fmi2::reference::files::<MachineStructureFmu>(None, 10)?,
+        sources: sources()?,
+        terminals: None,
+    };
+    fmi2::package::write_fmu(path, &files)?;
+    let xml3 = fmi3::model_description::<MachineStructureFmu>();
+    let files3 = fmi2::package::FmuFiles {
+        fmi_version: 3,
+        model_description: &xml3,
+        extra: fmi3::reference::files::<MachineStructureFmu>(None, 10)?,
+        terminals: fmi3::terminals_and_icons::<MachineStructureFmu>(),
+        ..files
+    };
+    fmi2::package::write_fmu(&fmi3::archive_path(path), &files3)
 }
 
 fmi2::export_fmi2!(crate::MachineStructureFmu);
+fmi3::export_fmi3!(crate::MachineStructureFmu);
