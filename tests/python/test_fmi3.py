@@ -234,3 +234,30 @@ def test_derivatives_equal_the_fmi2_ones(fmus: tuple[pathlib.Path, pathlib.Path]
         d3 = frame.s3.getDirectionalDerivative(u3, k3, seed3, nSensitivity=9)
         assert [d3[3 * i] for i in range(len(unknowns))] == list(d2)
     frame.free()
+
+
+def test_an_error_leaves_the_instance_terminated(fmus: tuple[pathlib.Path, pathlib.Path],
+                                                  tmp_path: pathlib.Path) -> None:
+    """As the FMI 3 Reference-FMUs: a refused call answers fmi3Error and the instance goes to
+    Terminated, where values can still be read, a step is refused, and fmi3Reset brings it back."""
+    cnc = Pair("CncMotion", tmp_path)
+    cnc.start()
+    s3 = cnc.s3
+    override = cnc.v3["feedOverride"].valueReference
+    with pytest.raises(Exception):
+        s3.setFloat64([override], [5.0])                      # outside 0 … 2
+    assert s3.getFloat64([override]) == [1.0]
+    with pytest.raises(Exception):
+        s3.doStep(0.0, 1e-3)
+    s3.reset()
+    s3.enterInitializationMode(startTime=0.0)
+    s3.exitInitializationMode()
+    load = cnc.v3["loadForce"].valueReference
+    with pytest.raises(Exception):
+        s3.setFloat64([load], [1.0])                          # an array of 3 given 1 value
+    s3.reset()
+    s3.enterInitializationMode(startTime=0.0)
+    s3.exitInitializationMode()
+    s3.doStep(0.0, 1e-3)
+    assert s3.getFloat64([load], nValues=3) == [0.0, 0.0, 0.0]
+    cnc.free()
