@@ -45,10 +45,21 @@ impl fmi2::Model for CncMotionFmu {
         INFO.get_or_init(|| {
             let description =
                 "CNC motion controller: G-code to jerk-limited axis motion through servo drives";
+            let info =
+                fmi2::crate_model_info!(model::MODEL_NAME, description, fmi2::table::variables(table()));
             ModelInfo {
                 enumerations: model::enumerations(),
                 default_experiment: (0.0, default_stop_time(), 1e-6, 0.001),
-                ..fmi2::crate_model_info!(model::MODEL_NAME, description, fmi2::table::variables(table()))
+                capabilities: fmi2::Capabilities {
+                    max_output_derivative_order: model::MAX_OUTPUT_DERIVATIVE_ORDER,
+                    // The interpolation period (of the default machine; machine.interpolationPeriod
+                    // sets another).
+                    fixed_internal_step: Some(Machine::default().interpolation_period),
+                    might_return_early: true,
+                    ..info.capabilities
+                },
+                terminals: model::terminals(),
+                ..info
             }
         })
     }
@@ -76,6 +87,15 @@ impl fmi2::Model for CncMotionFmu {
 
     fn do_step(&mut self, h: f64) -> Result<(), String> {
         self.0.do_step(h)
+    }
+
+    fn do_step_early(&mut self, h: f64) -> Result<f64, String> {
+        self.0.do_step_early(h)
+    }
+
+    fn output_derivative(&self, index: usize, order: u32) -> Option<f64> {
+        let e = &table()[index];
+        self.0.output_derivative(e.slot, e.axis, order)
     }
 
     /// The model version, then postcard of (parameters and inputs, program text and engine
@@ -147,3 +167,4 @@ pub fn model_description() -> String {
 }
 
 fmi2::export_fmi2!(crate::fmu::CncMotionFmu);
+fmi3::export_fmi3!(crate::fmu::CncMotionFmu);

@@ -19,6 +19,10 @@ use std::sync::Arc;
 
 pub const MODEL_NAME: &str = "CncMotion";
 
+/// Output derivatives the FMU gives (maxOutputDerivativeOrder): the command's, up to jerk from
+/// position ([`CncMotion::output_derivative`]).
+pub const MAX_OUTPUT_DERIVATIVE_ORDER: u32 = 3;
+
 /// The Enumeration types `Profile` and `Corner`: items 1…n in the order of the library's lists.
 pub fn enumerations() -> Vec<EnumerationType> {
     vec![
@@ -126,6 +130,21 @@ pub const ROWS: &[Row] = &[
     ("#.driveForce",                REAL,    OUT, CONT, "N",    NO,   NO,        Slot::Drive(4),         "# force of the drive on the machine structure"),
     ("path.contourError",           REAL,    OUT, CONT, "m",    NO,   NO,        Slot::ContourError,     "distance of the actual tool point from the programmed path"),
 ];
+
+/// The FMI 3 terminal a tool wires to MachineStructure's (same name, `plug` rule): the drive
+/// forces out, the load forces in (arrays over x, y, z).
+pub fn terminals() -> Vec<fmi2::Terminal> {
+    vec![fmi2::Terminal {
+        name: "frame".into(),
+        kind: "org.cnc-motion.frameCoupling".into(),
+        description: "two-way coupling with a machine-structure model: drive forces out, load forces in"
+            .into(),
+        members: vec![
+            ("driveForce".into(), "driveForce".into()),
+            ("loadForce".into(), "loadForce".into()),
+        ],
+    }]
+}
 
 /// FMI type of a drive parameter, from its kind in the servo table.
 fn servo_type(kind: Kind) -> Type {
@@ -262,6 +281,22 @@ impl CncMotion {
         }
     }
 
+    /// The `order`-th time derivative of output `slot` on axis `i` where the feed law gives it
+    /// exactly: the command p, v, a, j are each the derivative of the one before (chain rule of
+    /// x(s(t)), interp::axis_motion), at the latest tick (the current time when the step is a
+    /// multiple of the interpolation period). None past jerk (the feed laws give no snap) and for
+    /// the other outputs: path.distance is the programmed length, which blends and chords cut.
+    pub fn output_derivative(&self, slot: Slot, i: usize, order: u32) -> Option<f64> {
+        let (Slot::Command(k), true) = (slot, order > 0) else {
+            return None;
+        };
+        let slot = Slot::Command(Some(k + order as usize).filter(|&d| d <= 3)?);
+        match self.get(slot, i) {
+            Value::Real(x) => Some(x),
+            _ => None,
+        }
+    }
+
     /// Write a parameter or input on axis `i`. Each value's own range is checked here (the FMI
     /// layer has already refused non-finite Reals and values outside the declared min/max; this
     /// also refuses the gaps, e.g. 0 < x < min where 0 means "none"); relations between values
@@ -392,5 +427,33 @@ impl CncMotion {
         e.set_load_force(self.load_force);
         e.advance(h).map_err(|e| e.to_string())?;
         e.check_outputs()
+    }
+
+    /// [`CncMotion::do_step`] that ends early at the tick where the program finishes (FMI 3 early
+    /// return): the time advanced. Taken tick by tick (`Engine::step`, which is `advance` by one
+    /// period) from a tick over a whole number of ticks while the program runs and no hold is
+    /// set; otherwise, and for one tick, exactly `do_step`.
+    pub fn do_step_early(&mut self, h: f64) -> Result<f64, String> {
+        let period = self.machine.interpolation_period;
+        let e = self.engine.as_mut().ok_or("the model is not initialized")?;
+        let n = (h / period).round();
+        let at_tick = e.time() == e.ticks() as f64 * period;
+        let whole = n >= 2.0 && (n * period - h).abs() <= crate::tolerance::SAME_INSTANT_S;
+        if !(at_tick && whole) || e.finished() || self.feed_hold {
+            return self.do_step(h).map(|()| h);
+        }
+        e.set_feed_override(self.feed_override);
+        e.set_feed_hold(self.feed_hold);
+        e.set_load_force(self.load_force);
+        let n = n as u64;
+        for k in 1..=n {
+            e.step().map_err(|e| e.to_string())?;
+            if e.finished() && k < n {
+                e.check_outputs()?;
+                return Ok(k as f64 * period);
+            }
+        }
+        e.check_outputs()?;
+        Ok(h)
     }
 }

@@ -53,11 +53,15 @@ pub fn documentation() -> String {
 }
 
 /// sources/: this crate (manifest without its benches and dev-dependencies, in a workspace of
-/// itself and crates/fmi2), its lock file, src/, the default program, and the fmi2 crate.
+/// itself, crates/fmi2 and crates/fmi3), its lock file, src/, the default program, and the fmi2
+/// and fmi3 crates.
 pub fn sources() -> Result<Vec<Entry>, String> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let read = |p: &str| std::fs::read_to_string(root.join(p)).map_err(|e| format!("{p}: {e}"));
-    let members = [(r#""crates/fmi2", "crates/machine-structure""#, r#""crates/fmi2""#)];
+    let members = [(
+        r#""crates/fmi2", "crates/fmi3", "crates/machine-structure""#,
+        r#""crates/fmi2", "crates/fmi3""#,
+    )];
     let cargo = manifest(
         &read("Cargo.toml")?,
         &["[dev-dependencies]", "[[bench]]"],
@@ -74,6 +78,10 @@ pub fn sources() -> Result<Vec<Entry>, String> {
             "crates/fmi2/Cargo.toml".to_string(),
             read("crates/fmi2/Cargo.toml")?.into_bytes(),
         ),
+        (
+            "crates/fmi3/Cargo.toml".to_string(),
+            read("crates/fmi3/Cargo.toml")?.into_bytes(),
+        ),
         sources_readme(
             "CncMotion",
             "cnc-motion",
@@ -83,13 +91,15 @@ pub fn sources() -> Result<Vec<Entry>, String> {
     ];
     files.extend(tree(&root.join("src"), "src")?);
     files.extend(tree(&root.join("crates/fmi2/src"), "crates/fmi2/src")?);
+    files.extend(tree(&root.join("crates/fmi3/src"), "crates/fmi3/src")?);
     Ok(files)
 }
 
 /// Reference result: the default experiment at its 1 ms step, a row every 10 ms.
 const REFERENCE_EVERY: usize = 10;
 
-/// Write the FMU with the binaries of `platforms` (`linux64,win64`).
+/// Write the FMU with the binaries of `platforms` (`linux64,win64`), and beside it the FMI 3.0
+/// archive ([`fmi3::archive_path`]) with the same binaries, resources, documentation and sources.
 pub fn write_fmu(path: &Path, platforms: &str) -> Result<(), String> {
     let platforms = fmi2::package::platforms(platforms)?;
     let binaries = fmi2::package::built_libraries(&profile_dir()?, "cnc_motion", &platforms)?;
@@ -98,16 +108,27 @@ pub fn write_fmu(path: &Path, platforms: &str) -> Result<(), String> {
     let resources = Path::new(env!("CARGO_MANIFEST_DIR")).join("resources");
     let extra = fmi2::reference::files::<CncMotionFmu>(Some(&resources), REFERENCE_EVERY)
         .map_err(|e| format!("reference result: {e}"))?;
-    write_archive(
-        path,
-        &FmuFiles {
-            model_identifier: &CncMotionFmu::info().model_identifier,
-            model_description: &xml,
-            binaries,
-            resources: vec![("default.ngc".into(), DEFAULT_PROGRAM.as_bytes().to_vec())],
-            documentation_html: &doc,
-            extra,
-            sources: sources()?,
-        },
-    )
+    let files = FmuFiles {
+        fmi_version: 2,
+        model_identifier: &CncMotionFmu::info().model_identifier,
+        model_description: &xml,
+        binaries,
+        resources: vec![("default.ngc".into(), DEFAULT_PROGRAM.as_bytes().to_vec())],
+        documentation_html: &doc,
+        extra,
+        sources: sources()?,
+        terminals: None,
+    };
+    write_archive(path, &files)?;
+    let xml3 = fmi3::model_description::<CncMotionFmu>();
+    let extra3 = fmi3::reference::files::<CncMotionFmu>(Some(&resources), REFERENCE_EVERY)
+        .map_err(|e| format!("reference result: {e}"))?;
+    let files3 = FmuFiles {
+        fmi_version: 3,
+        model_description: &xml3,
+        extra: extra3,
+        terminals: fmi3::terminals_and_icons::<CncMotionFmu>(),
+        ..files
+    };
+    write_archive(&fmi3::archive_path(path), &files3)
 }

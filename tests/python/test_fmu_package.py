@@ -22,10 +22,12 @@ def test_repackaging_gives_the_same_bytes(fmus: tuple[pathlib.Path, pathlib.Path
     out = tmp_path / f"{name}.fmu"
     subprocess.run(PACKAGERS[name](out), check=True, capture_output=True)
     assert out.read_bytes() == (FMU_DIR / f"{name}.fmu").read_bytes()
+    # The FMI 3.0 archive written beside it too.
+    assert (tmp_path / f"{name}-fmi3.fmu").read_bytes() == (FMU_DIR / f"{name}-fmi3.fmu").read_bytes()
 
 
-@pytest.mark.parametrize("name,crates", [("CncMotion", {"cnc-motion", "fmi2"}),
-                                         ("MachineStructure", {"machine-structure", "fmi2"})])
+@pytest.mark.parametrize("name,crates", [("CncMotion", {"cnc-motion", "fmi2", "fmi3"}),
+                                         ("MachineStructure", {"machine-structure", "fmi2", "fmi3"})])
 def test_sources_are_a_cargo_workspace(fmus: tuple[pathlib.Path, pathlib.Path], name: str, crates: set[str],
                                        tmp_path: pathlib.Path) -> None:
     with zipfile.ZipFile(FMU_DIR / f"{name}.fmu") as z:
@@ -49,7 +51,8 @@ def test_sources_are_a_cargo_workspace(fmus: tuple[pathlib.Path, pathlib.Path], 
     assert res.returncode == 0, res.stderr
     meta = json.loads(res.stdout)
     assert {p["name"] for p in meta["packages"]} == crates
-    lib = next(t for p in meta["packages"] if p["name"] != "fmi2" for t in p["targets"] if "cdylib" in t["kind"])
+    lib = next(t for p in meta["packages"] if p["name"] not in ("fmi2", "fmi3") for t in p["targets"]
+               if "cdylib" in t["kind"])
     assert lib["name"] in ("cnc_motion", "machine_structure")
 
 

@@ -150,11 +150,12 @@ def test_saved_state_recovers_from_error(fmu: sim.Unpacked) -> None:
 
 
 def declared_dependencies(u: sim.Unpacked) -> dict[str, set[str]]:
-    """{output name: set of input names} from <ModelStructure><Outputs>."""
+    """{output name: set of input names} from <ModelStructure><Outputs> (the continuous states
+    the list also holds left out)."""
     deps = {}
     for unknown in u.md.outputs:
         assert unknown.dependencies is not None, f"{unknown.variable.name}: no dependencies declared"
-        deps[unknown.variable.name] = {d.name for d in unknown.dependencies}
+        deps[unknown.variable.name] = {d.name for d in unknown.dependencies if d.causality == "input"}
     return deps
 
 

@@ -1,5 +1,6 @@
-//! One FMU instance: the FMI 2.0 Co-Simulation state machine, the rules on which variable may be
-//! set when, the logger, FMU states and their serialization. Plain Rust; abi.rs does the C side.
+//! One FMU instance: the Co-Simulation state machine (FMI 2.0 and, through crates/fmi3, 3.0), the
+//! rules on which variable may be set when, the logger, FMU states and their serialization. Plain
+//! Rust; abi.rs does the C side.
 
 use crate::{Causality, Model, Type, Value, Variability, VariableInfo};
 use std::ffi::{c_char, c_int, c_void, CString};
@@ -20,6 +21,16 @@ pub enum Status {
 /// The logger callback of fmi2CallbackFunctions (variadic in C; we pass a finished message).
 pub type LoggerFn =
     unsafe extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char, ...);
+
+/// fmi3LogMessageCallback: environment, status, category, message (a plain string, no format).
+pub type LogMessageFn = unsafe extern "C" fn(*mut c_void, c_int, *const c_char, *const c_char);
+
+/// The importer's logger, of either version.
+#[derive(Clone, Copy)]
+pub enum Logger {
+    Fmi2(LoggerFn),
+    Fmi3(LogMessageFn),
+}
 
 /// States of a co-simulation slave (FMI 2.0, section 4.2.4). `Error` is terminal: only get*,
 /// status inquiries, reset, free and FMU-state calls are allowed (see `abi::Call::spec`).
@@ -45,21 +56,22 @@ pub const LOG_CATEGORIES: [(&str, &str); 4] = [
     ("logAll", "everything"),
 ];
 
-/// A saved FMU state (fmi2GetFMUstate): a deep copy of the model and the slave's time.
+/// A saved FMU state (fmi2GetFMUstate, fmi3GetFMUState): a deep copy of the model and the slave's
+/// time.
 pub struct Snapshot<M> {
     pub model: M,
     pub time: f64,
     pub state: State,
 }
 
-/// Serialized FMU state: magic "FMI2RS", format version (u16, big-endian), then GUID, time,
-/// slave state and the model's own bytes, each length-prefixed and checked on reading.
-/// Version 3: the models' bytes are postcard (was bincode 1.3).
+/// Serialized FMU state: magic "FMI2RS", format version (u16, big-endian), then GUID (FMI 3: the
+/// instantiation token), time, slave state and the model's own bytes, each length-prefixed and
+/// checked on reading. Version 3: the models' bytes are postcard (was bincode 1.3).
 const SERIAL_MAGIC: &[u8; 8] = b"FMI2RS\x00\x03";
 
 /// Why a value is outside what the variable declares (non-finite Real, min/max, enumeration
 /// items), if it is.
-pub(crate) fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<String> {
+pub fn out_of_range<M: Model>(v: &VariableInfo, value: &Value) -> Option<String> {
     let x = match *value {
         Value::Real(x) if !x.is_finite() => return Some(format!("{x} is not finite")),
         Value::Real(x) => x,
@@ -84,7 +96,12 @@ pub struct Instance<M: Model> {
     pub time: f64,
     pub stop_time: Option<f64>,
     pub resources: Option<PathBuf>,
-    logger: Option<LoggerFn>,
+    /// The GUID (FMI 2) or instantiation token (FMI 3) the importer gave: serialized FMU states
+    /// carry it and are refused by an instance of another model or version.
+    pub token: &'static str,
+    /// FMI 3: the importer allows fmi3DoStep to return early.
+    pub early_return_allowed: bool,
+    logger: Option<Logger>,
     env: *mut c_void,
     logging_on: bool,
     categories: [bool; LOG_CATEGORIES.len()],
@@ -103,7 +120,7 @@ impl<M: Model> Instance<M> {
     pub fn new(
         name: &str,
         resources: Option<PathBuf>,
-        logger: Option<LoggerFn>,
+        logger: Option<Logger>,
         env: *mut c_void,
         logging_on: bool,
     ) -> Self {
@@ -114,6 +131,8 @@ impl<M: Model> Instance<M> {
             time: 0.0,
             stop_time: None,
             resources,
+            token: &M::info().guid,
+            early_return_allowed: false,
             logger,
             env,
             logging_on,
@@ -131,19 +150,21 @@ impl<M: Model> Instance<M> {
         if !always && !(self.logging_on && (self.categories[category] || self.categories[3])) {
             return;
         }
-        // The logger formats its message like printf: escape '%'.
-        let text = CString::new(message.replace('\0', "").replace('%', "%%")).unwrap_or_default();
         let cat = CString::new(LOG_CATEGORIES[category].0).unwrap_or_default();
         // SAFETY: the importer gave this callback and environment for exactly this use.
-        unsafe {
-            logger(
-                self.env,
-                self.name.as_ptr(),
-                status as c_int,
-                cat.as_ptr(),
-                text.as_ptr(),
-            )
-        };
+        match logger {
+            Logger::Fmi2(logger) => {
+                // The FMI 2 logger formats its message like printf: escape '%'.
+                let text = message.replace('\0', "").replace('%', "%%");
+                let text = CString::new(text).unwrap_or_default();
+                let name = self.name.as_ptr();
+                unsafe { logger(self.env, name, status as c_int, cat.as_ptr(), text.as_ptr()) };
+            }
+            Logger::Fmi3(logger) => {
+                let text = CString::new(message.replace('\0', "")).unwrap_or_default();
+                unsafe { logger(self.env, status as c_int, cat.as_ptr(), text.as_ptr()) };
+            }
+        }
     }
 
     pub fn error(&self, message: &str) -> Status {
@@ -155,8 +176,9 @@ impl<M: Model> Instance<M> {
         self.log(Status::Ok, 0, message);
     }
 
-    /// fmi2SetDebugLogging: all categories for an empty list, else exactly those named.
-    pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Status {
+    /// fmi2SetDebugLogging/fmi3SetDebugLogging (`function`): all categories for an empty list,
+    /// else exactly those named.
+    pub fn set_debug_logging(&mut self, function: &str, on: bool, categories: &[String]) -> Status {
         if categories.is_empty() {
             self.categories = [true; LOG_CATEGORIES.len()];
         } else {
@@ -164,7 +186,7 @@ impl<M: Model> Instance<M> {
             for c in categories {
                 match LOG_CATEGORIES.iter().position(|(n, _)| n == c) {
                     Some(i) => set[i] = true,
-                    None => return self.error(&format!("fmi2SetDebugLogging: unknown log category '{c}'")),
+                    None => return self.error(&format!("{function}: unknown log category '{c}'")),
                 }
             }
             self.categories = set;
@@ -217,6 +239,13 @@ impl<M: Model> Instance<M> {
     /// after, inputs and tunable parameters only.
     pub fn set(&mut self, function: &str, vr: u32, family: Type, value: Value) -> Result<(), Status> {
         let i = self.lookup(function, vr, family)?;
+        self.set_at(function, i, value)
+    }
+
+    /// Set variable `i` of the table (the rules of [`Instance::set`]; FMI 3.0 has the same for
+    /// Co-Simulation without Event Mode: start values before initialization ends, then inputs
+    /// and tunable parameters).
+    pub fn set_at(&mut self, function: &str, i: usize, value: Value) -> Result<(), Status> {
         let v = &M::info().variables[i];
         let allowed = match self.state {
             State::Instantiated | State::InitializationMode => {
@@ -257,9 +286,9 @@ impl<M: Model> Instance<M> {
         self.state = s.state;
     }
 
-    /// Versioned, size-checked bytes: magic, GUID, time, state, model bytes.
-    pub fn serialize(s: &Snapshot<M>) -> Vec<u8> {
-        let guid = M::info().guid.as_bytes();
+    /// Versioned, size-checked bytes: magic, GUID (or token), time, state, model bytes.
+    pub fn serialize(&self, s: &Snapshot<M>) -> Vec<u8> {
+        let guid = self.token.as_bytes();
         let body = s.model.serialize();
         let mut out = Vec::with_capacity(32 + guid.len() + body.len());
         out.extend_from_slice(SERIAL_MAGIC);
@@ -286,8 +315,10 @@ impl<M: Model> Instance<M> {
             return Err("not a serialized state of this FMU (magic/version mismatch)".into());
         }
         let n = u32::from_le_bytes(take(4)?.try_into().map_err(|_| "bad length")?) as usize;
-        if take(n)? != M::info().guid.as_bytes() {
-            return Err("serialized FMU state belongs to another model (GUID mismatch)".into());
+        if take(n)? != self.token.as_bytes() {
+            return Err(
+                "serialized FMU state belongs to another model or FMI version (GUID mismatch)".into(),
+            );
         }
         let time = f64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad time")?);
         if !time.is_finite() {

@@ -1,7 +1,8 @@
 //! A generic FMI 2.0 Co-Simulation slave: the C ABI, the state machine, argument and rule checks,
 //! logging, FMU state and serialization, and the modelDescription.xml writer. A model plugs in
 //! through [`Model`] and one call of [`export_fmi2!`]; nothing here knows a model's variables
-//! except through the table it describes itself with.
+//! except through the table it describes itself with. The FMI 3.0 side (crates/fmi3) builds on
+//! the same [`Model`], table, [`instance::Instance`] and state machine ([`abi::guard`]).
 
 pub mod abi;
 pub mod doc;
@@ -114,9 +115,28 @@ pub struct VariableInfo {
     /// Declared range (Real, Integer), emitted as `min`/`max` in the XML.
     pub min: Option<f64>,
     pub max: Option<f64>,
-    /// Outputs: indices (in `ModelInfo::variables`) of the inputs this output depends on
-    /// directly (`Some(vec![])`: none); `None` declares nothing (depends on all).
+    /// Outputs and state derivatives: indices (in `ModelInfo::variables`) of the inputs and
+    /// states this unknown depends on directly (`Some(vec![])`: none); `None` declares nothing
+    /// (depends on all).
     pub dependencies: Option<Vec<usize>>,
+    /// This variable is the time derivative of variable `i` (a continuous state; FMI
+    /// `derivative` attribute): it is listed under ModelStructure/Derivatives.
+    pub derivative_of: Option<usize>,
+    /// Element of an array in FMI 3.0 (the per-axis variables of a `#` row, see
+    /// [`table::expand`]); None: a scalar in both versions.
+    pub element: Option<Element>,
+}
+
+/// Where an FMI 2 scalar sits in an FMI 3 array variable: `x.command.position` is element 0 of
+/// `command.position` (3 elements, x, y, z).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Element {
+    /// The array's name (the row's name without its `#.` prefix).
+    pub array: String,
+    pub index: usize,
+    pub len: usize,
+    /// The array's description (the row's, naming every axis).
+    pub description: String,
 }
 
 impl VariableInfo {
@@ -140,6 +160,8 @@ impl VariableInfo {
             min: None,
             max: None,
             dependencies: None,
+            derivative_of: None,
+            element: None,
         }
     }
 
@@ -169,7 +191,8 @@ impl VariableInfo {
         self
     }
 
-    /// Parameters and inputs carry a start value (initial = exact); outputs are calculated.
+    /// Parameters and inputs carry a start value (initial = exact); outputs and locals (states,
+    /// derivatives) are calculated.
     pub fn has_start(&self) -> bool {
         matches!(self.causality, Causality::Parameter | Causality::Input)
     }
@@ -212,6 +235,35 @@ pub struct UnitDefinition {
     pub display: Vec<DisplayUnit>,
 }
 
+/// Optional abilities of a model, declared in both versions' XML (FMI 2 / FMI 3 attribute names).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Capabilities {
+    /// maxOutputDerivativeOrder: [`Model::output_derivative`] answers orders 1…n (0 where it
+    /// does not know one, as the standard says).
+    pub max_output_derivative_order: u32,
+    /// canInterpolateInputs (FMI 2): [`Model::set_input_derivative`] takes orders 1…n of the
+    /// continuous Real inputs (n = `max_input_derivative_order`).
+    pub max_input_derivative_order: u32,
+    /// providesDirectionalDerivative(s) and, in FMI 3, providesAdjointDerivatives:
+    /// [`Model::partial_derivative`] of outputs and state derivatives.
+    pub provides_directional_derivative: bool,
+    /// fixedInternalStepSize (FMI 3).
+    pub fixed_internal_step: Option<f64>,
+    /// mightReturnEarlyFromDoStep (FMI 3): [`Model::do_step_early`] may stop inside a step.
+    pub might_return_early: bool,
+}
+
+/// A terminal (FMI 3 terminalsAndIcons.xml): variables grouped for connecting, each by its FMI 3
+/// name with a member name that matches the other side's (`plug` rule).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Terminal {
+    pub name: String,
+    pub kind: String,
+    pub description: String,
+    /// (FMI 3 variable name, member name).
+    pub members: Vec<(String, String)>,
+}
+
 /// What the model tells the layer (and the XML) about itself.
 #[derive(Clone, Debug)]
 pub struct ModelInfo {
@@ -228,6 +280,8 @@ pub struct ModelInfo {
     pub units: Vec<UnitDefinition>,
     /// DefaultExperiment: start, stop, tolerance, step size.
     pub default_experiment: (f64, f64, f64, f64),
+    pub capabilities: Capabilities,
+    pub terminals: Vec<Terminal>,
 }
 
 impl ModelInfo {
@@ -252,7 +306,32 @@ impl ModelInfo {
             enumerations: Vec::new(),
             units,
             default_experiment: (0.0, 1.0, 1e-6, 1e-3),
+            capabilities: Capabilities::default(),
+            terminals: Vec::new(),
         }
+    }
+
+    /// Indices of the continuous states: the variables some other variable is the derivative of.
+    pub fn states(&self) -> Vec<usize> {
+        let mut s: Vec<usize> = self.variables.iter().filter_map(|v| v.derivative_of).collect();
+        s.sort_unstable();
+        s.dedup();
+        s
+    }
+
+    /// Whether variable `i` may be an unknown of a directional derivative: an output or a state
+    /// derivative.
+    pub fn is_unknown(&self, i: usize) -> bool {
+        let v = &self.variables[i];
+        v.causality == Causality::Output || v.derivative_of.is_some()
+    }
+
+    /// Whether variable `i` may be a known of a directional derivative: a continuous Real input
+    /// or a continuous state.
+    pub fn is_known(&self, i: usize) -> bool {
+        let v = &self.variables[i];
+        let input = v.causality == Causality::Input && v.variability == Variability::Continuous;
+        input || self.variables.iter().any(|u| u.derivative_of == Some(i))
     }
 }
 
@@ -272,6 +351,32 @@ pub trait Model: Clone + Send + 'static {
     /// Whole state as bytes (versioned by the model), and back.
     fn serialize(&self) -> Vec<u8>;
     fn deserialize(&mut self, bytes: &[u8]) -> Result<(), String>;
+
+    /// Advance by h > 0, or less when an event inside the step asks for a communication point
+    /// of its own (FMI 3 early return, when the importer allows it): the time advanced, in (0, h].
+    fn do_step_early(&mut self, h: f64) -> Result<f64, String> {
+        self.do_step(h).map(|()| h)
+    }
+
+    /// Time derivative of order 1…`max_output_derivative_order` of Real output `index` at the
+    /// current time, None where the model does not know it (the layer then answers 0 with a
+    /// Warning naming the output and order).
+    fn output_derivative(&self, _index: usize, _order: u32) -> Option<f64> {
+        None
+    }
+
+    /// The `order`-th time derivative of continuous input `index` at the start of the next steps
+    /// (FMI 2 fmi2SetRealInputDerivatives; models with `max_input_derivative_order` > 0).
+    fn set_input_derivative(&mut self, _index: usize, _order: u32, _value: f64) -> Result<(), String> {
+        Err("this model cannot interpolate inputs".into())
+    }
+
+    /// ∂unknown/∂known at the current communication point: unknowns are outputs and state
+    /// derivatives, knowns continuous inputs and states ([`ModelInfo::is_unknown`],
+    /// [`ModelInfo::is_known`]; models with `provides_directional_derivative`).
+    fn partial_derivative(&self, _unknown: usize, _known: usize) -> f64 {
+        0.0
+    }
 }
 
 /// Reads `(variable name, value)` pairs into a model through the same checks as fmi2Set* (finite,
@@ -314,8 +419,15 @@ pub fn guid_of(variables: &[VariableInfo]) -> String {
         .iter()
         .map(|v| {
             format!(
-                "{}|{}|{:?}|{:?}|{:?}|{:?}|{:?};",
-                v.name, v.value_reference, v.kind, v.causality, v.variability, v.unit, v.dependencies
+                "{}|{}|{:?}|{:?}|{:?}|{:?}|{:?}|{:?};",
+                v.name,
+                v.value_reference,
+                v.kind,
+                v.causality,
+                v.variability,
+                v.unit,
+                v.dependencies,
+                v.derivative_of
             )
         })
         .collect();

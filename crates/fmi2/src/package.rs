@@ -1,5 +1,7 @@
-//! Writing a .fmu: modelDescription.xml, binaries/<platform>/<id>.<so|dll> (linux64 and win64),
-//! resources/, documentation/, extra/ (the reference result), sources/. The archive is
+//! Writing a .fmu (FMI 2.0 or 3.0): modelDescription.xml, binaries/<platform>/<id>.<so|dll>
+//! (linux64 and win64; FMI 3: x86_64-linux and x86_64-windows, the same libraries, which export
+//! both versions' functions), resources/, documentation/, extra/ (the reference result),
+//! terminalsAndIcons/ (FMI 3), sources/. The archive is
 //! reproducible: entries in a fixed order, each with the same fixed timestamp (1980-01-01, the zip
 //! epoch) and permissions, so the same inputs give the same bytes.
 
@@ -10,11 +12,12 @@ use zip::write::SimpleFileOptions;
 /// A file inside the archive: path and bytes.
 pub type Entry = (String, Vec<u8>);
 
-/// A platform the FMU ships a binary for: FMI 2.0 name, Rust target (None: the host build),
-/// shared-library file name from the crate's library name.
+/// A platform the FMU ships a binary for: FMI 2.0 name, FMI 3.0 name, Rust target (None: the
+/// host build), shared-library file name from the crate's library name.
 #[derive(Debug)]
 pub struct Platform {
     pub name: &'static str,
+    pub fmi3_name: &'static str,
     pub target: Option<&'static str>,
     pub library: fn(&str) -> String,
     pub extension: &'static str,
@@ -24,12 +27,14 @@ pub struct Platform {
 pub const PLATFORMS: [Platform; 2] = [
     Platform {
         name: "linux64",
+        fmi3_name: "x86_64-linux",
         target: None,
         library: |lib| format!("lib{lib}.so"),
         extension: "so",
     },
     Platform {
         name: "win64",
+        fmi3_name: "x86_64-windows",
         target: Some("x86_64-pc-windows-gnu"),
         library: |lib| format!("{lib}.dll"),
         extension: "dll",
@@ -81,6 +86,8 @@ pub fn built_libraries(
 
 /// Files of an FMU archive, by path inside the archive.
 pub struct FmuFiles<'a> {
+    /// 2 or 3: the binaries' platform folders (linux64 or x86_64-linux, …).
+    pub fmi_version: u8,
     pub model_identifier: &'a str,
     pub model_description: &'a str,
     /// The built shared libraries (cdylib) of the model, by platform.
@@ -91,15 +98,22 @@ pub struct FmuFiles<'a> {
     pub extra: Vec<Entry>,
     /// The sources the binary is built from (paths relative to `sources/`).
     pub sources: Vec<Entry>,
+    /// terminalsAndIcons/terminalsAndIcons.xml (FMI 3), if any.
+    pub terminals: Option<String>,
 }
 
 pub fn write_fmu(path: &Path, files: &FmuFiles) -> Result<(), String> {
     let mut libs = Vec::new();
     for (platform, lib) in &files.binaries {
         let bytes = std::fs::read(lib).map_err(|e| format!("{}: {e}", lib.display()))?;
+        let folder = if files.fmi_version >= 3 {
+            platform.fmi3_name
+        } else {
+            platform.name
+        };
         let name = format!(
-            "binaries/{}/{}.{}",
-            platform.name, files.model_identifier, platform.extension
+            "binaries/{folder}/{}.{}",
+            files.model_identifier, platform.extension
         );
         libs.push((name, bytes));
     }
@@ -119,6 +133,9 @@ pub fn write_fmu(path: &Path, files: &FmuFiles) -> Result<(), String> {
         "documentation/index.html".into(),
         files.documentation_html.as_bytes(),
     ));
+    if let Some(t) = &files.terminals {
+        entries.push(("terminalsAndIcons/terminalsAndIcons.xml".into(), t.as_bytes()));
+    }
     let fixed = entries.len();
     entries.extend(
         files
@@ -229,6 +246,7 @@ mod tests {
         let write = |name: &str, sources: Vec<Entry>| {
             let path = dir.join(name);
             let files = FmuFiles {
+                fmi_version: 2,
                 model_identifier: "M",
                 model_description: "<fmiModelDescription/>",
                 binaries: vec![(&PLATFORMS[0], lib.clone()), (&PLATFORMS[1], dll.clone())],
@@ -236,6 +254,7 @@ mod tests {
                 documentation_html: "<html/>",
                 extra: vec![("ls/manifest.xml".into(), b"<m/>".to_vec())],
                 sources,
+                terminals: None,
             };
             write_fmu(&path, &files).unwrap();
             std::fs::read(path).unwrap()

@@ -1,8 +1,9 @@
 //! A model's variables as a table of plain rows, expanded into [`VariableInfo`]s: rows whose name
 //! holds `#` stand for one variable per axis (x, y, z, …), with the axis index given to the row's
-//! slot (what the model reads or writes).
+//! slot (what the model reads or writes). In FMI 3 the variables of a `#` row are one array (its
+//! name without the `#.` prefix, one element per axis: [`crate::Element`]).
 
-use crate::{Causality, Type, Variability, VariableInfo};
+use crate::{Causality, Element, Type, Variability, VariableInfo};
 
 /// name (`#`: per axis), type, causality, variability, unit ("": none), min, max, slot,
 /// description (`#` replaced by the axis name too).
@@ -52,19 +53,55 @@ pub fn one<S: Copy>(row: &Row<S>, axis: &str) -> Vec<(VariableInfo, S)> {
     vec![(variable(row, axis), row.7)]
 }
 
+/// `text` with every whole word `word` replaced by `by` (words: runs of letters and digits).
+fn replace_word(text: &str, word: &str, by: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(word) {
+        let before = text[..text.len() - rest.len() + at].chars().next_back();
+        let after = rest[at + word.len()..].chars().next();
+        let alone = !before.is_some_and(char::is_alphanumeric) && !after.is_some_and(char::is_alphanumeric);
+        out.push_str(&rest[..at]);
+        out.push_str(if alone { by } else { word });
+        rest = &rest[at + word.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// The table expanded in order: a row without `#` once (axis 0, name ""); a run of `#` rows of one
 /// causality once for each axis (all rows of the run for the first axis, then the second, …).
 /// `expand(row, axis name)` turns one row on one axis into its variables (usually [`one`]; a row
-/// may stand for several, e.g. one per drive parameter).
+/// may stand for several, e.g. one per drive parameter). The variables of a `#` row are the
+/// elements of one FMI 3 array: their name without the `axis.` prefix, the description of the
+/// first axis' naming all of them (`x commanded position` → `x/y/z commanded position`).
+///
+/// # Panics
+/// If a `#` row's variable does not start with its axis' name and a dot (a table error; every
+/// model's tests build its table).
 pub fn expand<S: Copy>(
     rows: &[Row<S>],
     axes: &[&str],
     mut expand: impl FnMut(&Row<S>, &str) -> Vec<(VariableInfo, S)>,
 ) -> Vec<Entry<S>> {
     let mut out = Vec::new();
+    let all = axes.join("/");
     let mut push = |row: &Row<S>, axis: usize, name: &str| {
-        let vars = expand(row, name).into_iter();
-        out.extend(vars.map(|(var, slot)| Entry { var, slot, axis }));
+        let per_axis = row.0.contains('#');
+        let vars = expand(row, name).into_iter().map(|(mut var, slot)| {
+            if per_axis {
+                let array = var.name.strip_prefix(name).and_then(|n| n.strip_prefix('.'));
+                let array = array.unwrap_or_else(|| panic!("{}: not named after its axis", var.name));
+                var.element = Some(Element {
+                    array: array.to_string(),
+                    index: axis,
+                    len: axes.len(),
+                    description: replace_word(&var.description, name, &all),
+                });
+            }
+            Entry { var, slot, axis }
+        });
+        out.extend(vars);
     };
     let mut k = 0;
     while k < rows.len() {
@@ -144,5 +181,22 @@ mod tests {
         );
         assert_eq!(t[3].var.dependencies, Some(vec![]));
         assert_eq!(index_of(&t, "y.b"), Some(4));
+        let e = t[2]
+            .var
+            .element
+            .as_ref()
+            .expect("a # row's variable is an array element");
+        assert_eq!((e.array.as_str(), e.index, e.len), ("a", 1, 2));
+        assert_eq!(e.description, "a of x/y");
+        assert!(t[0].var.element.is_none() && t[5].var.element.is_none());
+    }
+
+    #[test]
+    fn words_are_replaced_whole() {
+        assert_eq!(
+            replace_word("x axis, x-limit (max x)", "x", "x/y"),
+            "x/y axis, x/y-limit (max x/y)"
+        );
+        assert_eq!(replace_word("xx box x1 ax", "x", "-"), "xx box x1 ax");
     }
 }

@@ -20,7 +20,8 @@ fn value_text(v: &Value) -> String {
     }
 }
 
-fn causality(c: Causality) -> &'static str {
+/// The XML name of a causality.
+pub fn causality(c: Causality) -> &'static str {
     match c {
         Causality::Parameter => "parameter",
         Causality::CalculatedParameter => "calculatedParameter",
@@ -31,7 +32,8 @@ fn causality(c: Causality) -> &'static str {
     }
 }
 
-fn variability(v: Variability) -> &'static str {
+/// The XML name of a variability.
+pub fn variability(v: Variability) -> &'static str {
     match v {
         Variability::Constant => "constant",
         Variability::Fixed => "fixed",
@@ -41,9 +43,11 @@ fn variability(v: Variability) -> &'static str {
     }
 }
 
-type W = Writer<Vec<u8>>;
+/// The XML writer (in memory, indented by two spaces).
+pub type W = Writer<Vec<u8>>;
 
-fn start(w: &mut W, name: &str, attrs: &[(&str, String)]) {
+/// `<name attrs>`.
+pub fn start(w: &mut W, name: &str, attrs: &[(&str, String)]) {
     let mut e = BytesStart::new(name);
     for (k, v) in attrs {
         e.push_attribute((*k, v.as_str()));
@@ -51,7 +55,8 @@ fn start(w: &mut W, name: &str, attrs: &[(&str, String)]) {
     w.write_event(Event::Start(e)).expect("writing to memory");
 }
 
-fn empty(w: &mut W, name: &str, attrs: &[(&str, String)]) {
+/// `<name attrs/>`.
+pub fn empty(w: &mut W, name: &str, attrs: &[(&str, String)]) {
     let mut e = BytesStart::new(name);
     for (k, v) in attrs {
         e.push_attribute((*k, v.as_str()));
@@ -59,16 +64,30 @@ fn empty(w: &mut W, name: &str, attrs: &[(&str, String)]) {
     w.write_event(Event::Empty(e)).expect("writing to memory");
 }
 
-fn end(w: &mut W, name: &str) {
+/// `</name>`.
+pub fn end(w: &mut W, name: &str) {
     w.write_event(Event::End(BytesEnd::new(name)))
         .expect("writing to memory");
 }
 
-/// The XML text; `start_values[i]` is the start of variable i (None for calculated outputs).
-pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> String {
+/// A new document: the XML declaration written.
+pub fn document() -> W {
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))
         .expect("writing to memory");
+    w
+}
+
+/// The document's text, with a final newline.
+pub fn text(w: W) -> String {
+    let mut text = String::from_utf8(w.into_inner()).expect("UTF-8 input");
+    text.push('\n');
+    text
+}
+
+/// The XML text; `start_values[i]` is the start of variable i (None for calculated outputs).
+pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> String {
+    let mut w = document();
     let header: Vec<(&str, String)> = [
         ("fmiVersion", "2.0".into()),
         ("modelName", info.model_name.clone()),
@@ -89,20 +108,32 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
     .filter(|(_, v)| !v.is_empty())
     .collect();
     start(&mut w, "fmiModelDescription", &header);
-    empty(
-        &mut w,
-        "CoSimulation",
-        &[
-            ("modelIdentifier", info.model_identifier.clone()),
-            ("canHandleVariableCommunicationStepSize", "true".into()),
-            ("canInterpolateInputs", "false".into()),
-            ("canBeInstantiatedOnlyOncePerProcess", "false".into()),
-            ("canNotUseMemoryManagementFunctions", "true".into()),
-            ("canGetAndSetFMUstate", "true".into()),
-            ("canSerializeFMUstate", "true".into()),
-            ("providesDirectionalDerivative", "false".into()),
-        ],
-    );
+    let caps = &info.capabilities;
+    let mut cs: Vec<(&str, String)> = vec![
+        ("modelIdentifier", info.model_identifier.clone()),
+        ("canHandleVariableCommunicationStepSize", "true".into()),
+        (
+            "canInterpolateInputs",
+            (caps.max_input_derivative_order > 0).to_string(),
+        ),
+    ];
+    if caps.max_output_derivative_order > 0 {
+        cs.push((
+            "maxOutputDerivativeOrder",
+            caps.max_output_derivative_order.to_string(),
+        ));
+    }
+    cs.extend([
+        ("canBeInstantiatedOnlyOncePerProcess", "false".into()),
+        ("canNotUseMemoryManagementFunctions", "true".into()),
+        ("canGetAndSetFMUstate", "true".into()),
+        ("canSerializeFMUstate", "true".into()),
+        (
+            "providesDirectionalDerivative",
+            caps.provides_directional_derivative.to_string(),
+        ),
+    ]);
+    empty(&mut w, "CoSimulation", &cs);
     unit_definitions(&mut w, info);
     type_definitions(&mut w, info);
     start(&mut w, "LogCategories", &[]);
@@ -132,12 +163,11 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
     end(&mut w, "ModelVariables");
     model_structure(&mut w, info);
     end(&mut w, "fmiModelDescription");
-    let mut text = String::from_utf8(w.into_inner()).expect("UTF-8 input");
-    text.push('\n');
-    text
+    text(w)
 }
 
-fn unit_definitions(w: &mut W, info: &ModelInfo) {
+/// UnitDefinitions (the same in FMI 2.0 and 3.0).
+pub fn unit_definitions(w: &mut W, info: &ModelInfo) {
     if !info.units.is_empty() {
         start(w, "UnitDefinitions", &[]);
     }
@@ -189,16 +219,24 @@ fn type_definitions(w: &mut W, info: &ModelInfo) {
     }
 }
 
-/// Outputs with their declared dependencies (attribute left out: depends on every input), and
-/// the initial unknowns (dependencies not declared).
+/// Outputs and state derivatives with their declared dependencies (attribute left out: depends
+/// on every known), and the initial unknowns: outputs, states and derivatives, all calculated
+/// (dependencies not declared).
 fn model_structure(w: &mut W, info: &ModelInfo) {
     start(w, "ModelStructure", &[]);
-    let outputs: Vec<usize> = (0..info.variables.len())
-        .filter(|&i| info.variables[i].causality == Causality::Output)
-        .collect();
-    if !outputs.is_empty() {
-        start(w, "Outputs", &[]);
-        for &i in &outputs {
+    let of = |keep: &dyn Fn(&VariableInfo) -> bool| -> Vec<usize> {
+        (0..info.variables.len())
+            .filter(|&i| keep(&info.variables[i]))
+            .collect()
+    };
+    let outputs = of(&|v| v.causality == Causality::Output);
+    let derivatives = of(&|v| v.derivative_of.is_some());
+    let unknowns = |w: &mut W, list: &[usize], element: &str| {
+        if list.is_empty() {
+            return;
+        }
+        start(w, element, &[]);
+        for &i in list {
             let mut a = vec![("index", (i + 1).to_string())];
             if let Some(deps) = &info.variables[i].dependencies {
                 let list: Vec<String> = deps.iter().map(|d| (d + 1).to_string()).collect();
@@ -206,9 +244,18 @@ fn model_structure(w: &mut W, info: &ModelInfo) {
             }
             empty(w, "Unknown", &a);
         }
-        end(w, "Outputs");
+        end(w, element);
+    };
+    unknowns(w, &outputs, "Outputs");
+    unknowns(w, &derivatives, "Derivatives");
+    let states = info.states();
+    let initial = of(&|v| v.causality == Causality::Output || v.derivative_of.is_some());
+    let mut initial: Vec<usize> = initial.into_iter().chain(states).collect();
+    initial.sort_unstable();
+    initial.dedup();
+    if !initial.is_empty() {
         start(w, "InitialUnknowns", &[]);
-        for i in &outputs {
+        for i in &initial {
             empty(w, "Unknown", &[("index", (i + 1).to_string())]);
         }
         end(w, "InitialUnknowns");
@@ -224,7 +271,7 @@ fn variable(w: &mut W, info: &ModelInfo, v: &VariableInfo, start_value: Option<V
         ("causality", causality(v.causality).into()),
         ("variability", variability(v.variability).into()),
     ];
-    if v.causality == Causality::Output {
+    if matches!(v.causality, Causality::Output | Causality::Local) {
         attrs.push(("initial", "calculated".into()));
     } else if v.has_start() && matches!(v.causality, Causality::Parameter) {
         attrs.push(("initial", "exact".into()));
@@ -257,6 +304,9 @@ fn variable(w: &mut W, info: &ModelInfo, v: &VariableInfo, start_value: Option<V
     }
     if let (true, Some(s)) = (v.has_start(), start_value) {
         t.push(("start", value_text(&s)));
+    }
+    if let Some(of) = v.derivative_of {
+        t.push(("derivative", (of + 1).to_string()));
     }
     empty(w, elem, &t);
     end(w, "ScalarVariable");

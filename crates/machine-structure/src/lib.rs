@@ -3,11 +3,15 @@
 //! back on each axis (two-way coupling). Built on the generic FMI layer (crates/fmi2): the whole
 //! model glue is the table below.
 
+// The unit-test build sees the integration tests' dependencies.
+#[cfg(test)]
+use libloading as _;
+
 pub mod modal;
 pub mod ranges;
 
 use fmi2::table::{index_of, Entry};
-use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
+use fmi2::Causality::{Input as IN, Local as LOC, Output as OUT, Parameter as PAR};
 use fmi2::Variability::{Continuous as CONT, Fixed as FIX};
 use fmi2::{ModelInfo, Type, Value};
 use modal::{Mode, ModeState};
@@ -84,6 +88,8 @@ enum Slot {
     Deflection,
     Acceleration,
     LoadForce,
+    /// Continuous state of a mode (mode, 0: displacement q, 1: velocity q̇) or its q̈ (2).
+    State(usize, usize),
 }
 
 const NO: Option<f64> = None;
@@ -111,21 +117,74 @@ const ROWS: &[fmi2::table::Row<Slot>] = &[
     ("#.deflection",      Type::Real, OUT, CONT, "m",    NO,        NO,      Slot::Deflection,   "tool-point deflection of the frame along #"),
     ("#.acceleration",    Type::Real, OUT, CONT, "m/s2", NO,        NO,      Slot::Acceleration, "frame acceleration along # (direct feed-through of #.driveForce)"),
     ("#.loadForce",       Type::Real, OUT, CONT, "N",    NO,        NO,      Slot::LoadForce,    "inertial force of the moving frame on the # table, −couplingMass·(modal acceleration without the direct F/m term); to CncMotion #.loadForce"),
+    ("#.mode1.q",         Type::Real, LOC, CONT, "m",    NO,        NO,      Slot::State(0, 0),  "# mode 1: modal displacement (continuous state)"),
+    ("#.mode1.v",         Type::Real, LOC, CONT, "m/s",  NO,        NO,      Slot::State(0, 1),  "# mode 1: modal velocity (continuous state, der(q))"),
+    ("#.mode1.a",         Type::Real, LOC, CONT, "m/s2", NO,        NO,      Slot::State(0, 2),  "# mode 1: modal acceleration der(v) = F/m − 2ζω v − ω² q"),
+    ("#.mode2.q",         Type::Real, LOC, CONT, "m",    NO,        NO,      Slot::State(1, 0),  "# mode 2: modal displacement (continuous state)"),
+    ("#.mode2.v",         Type::Real, LOC, CONT, "m/s",  NO,        NO,      Slot::State(1, 1),  "# mode 2: modal velocity (continuous state, der(q))"),
+    ("#.mode2.a",         Type::Real, LOC, CONT, "m/s2", NO,        NO,      Slot::State(1, 2),  "# mode 2: modal acceleration der(v) = F/m − 2ζω v − ω² q"),
 ];
 
-/// The table expanded; a = Σ (F/m − 2ζω q̇ − ω² q): each axis' acceleration depends directly on
-/// the drive force of the same axis, every other output on no input.
+/// The table expanded, with the state-space structure of each axis (per mode q̇ = v,
+/// v̇ = F/m − 2ζω v − ω² q): the modal q and v are the continuous states (v the derivative of q,
+/// a of v); deflection = Σ q, acceleration = Σ v̇ (directly on the drive force of the same axis),
+/// loadForce = −M·Σ(−2ζω v − ω² q). Dependencies list the inputs and states each unknown reads.
 fn table() -> &'static [Entry<Slot>] {
     static T: OnceLock<Vec<Entry<Slot>>> = OnceLock::new();
     T.get_or_init(|| {
         let mut t = fmi2::table::expand(ROWS, &AXES, fmi2::table::one);
+        let at = |t: &[Entry<Slot>], name: String| index_of(t, &name).expect("in the table");
         for a in AXES {
-            let force = index_of(&t, &format!("{a}.driveForce"));
-            let acceleration = index_of(&t, &format!("{a}.acceleration")).expect("in the table");
-            t[acceleration].var.dependencies = force.map(|f| vec![f]);
+            let force = at(&t, format!("{a}.driveForce"));
+            let q: Vec<usize> = (1..=MODES).map(|k| at(&t, format!("{a}.mode{k}.q"))).collect();
+            let v: Vec<usize> = (1..=MODES).map(|k| at(&t, format!("{a}.mode{k}.v"))).collect();
+            let qv: Vec<usize> = q.iter().chain(&v).copied().collect();
+            for k in 0..MODES {
+                let acc = at(&t, format!("{a}.mode{}.a", k + 1));
+                t[v[k]].var.derivative_of = Some(q[k]);
+                t[v[k]].var.dependencies = Some(vec![v[k]]);
+                t[acc].var.derivative_of = Some(v[k]);
+                t[acc].var.dependencies = Some(sorted(vec![force, q[k], v[k]]));
+            }
+            let outputs = [
+                ("deflection", q.clone()),
+                ("acceleration", qv.iter().copied().chain([force]).collect()),
+                ("loadForce", qv),
+            ];
+            for (name, deps) in outputs {
+                let o = at(&t, format!("{a}.{name}"));
+                t[o].var.dependencies = Some(sorted(deps));
+            }
         }
         t
     })
+}
+
+fn sorted(mut v: Vec<usize>) -> Vec<usize> {
+    v.sort_unstable();
+    v
+}
+
+/// ∂unknown/∂known of the state-space form (see [`table`]) for the variables of axis `i`: the
+/// model is linear, so these are the entries of its matrices A, B, C, D.
+fn partial(m: &MachineStructure, unknown: Slot, known: Slot, i: usize) -> f64 {
+    let mode = |k: usize| m.modes[i][k];
+    // d(Σ_k v̇_k)/d(known) without the force term, times `scale`.
+    let modal = |known: Slot, scale: f64| match known {
+        Slot::State(k, 0) => -mode(k).omega().powi(2) * scale,
+        Slot::State(k, _) => -2.0 * mode(k).damping * mode(k).omega() * scale,
+        _ => 0.0,
+    };
+    match (unknown, known) {
+        (Slot::Deflection, Slot::State(_, 0)) => 1.0,
+        (Slot::Acceleration, Slot::Force) => (0..MODES).map(|k| 1.0 / mode(k).mass).sum(),
+        (Slot::Acceleration, _) => modal(known, 1.0),
+        (Slot::LoadForce, _) => modal(known, -m.coupling_mass[i]),
+        (Slot::State(k, 1), Slot::State(l, 1)) if k == l => 1.0,
+        (Slot::State(k, 2), Slot::Force) => 1.0 / mode(k).mass,
+        (Slot::State(k, 2), Slot::State(l, _)) if k == l => modal(known, 1.0),
+        _ => 0.0,
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -136,7 +195,27 @@ impl fmi2::Model for MachineStructureFmu {
         static INFO: OnceLock<ModelInfo> = OnceLock::new();
         INFO.get_or_init(|| {
             let description = "Modal model of a machine frame driven by the axis drive forces";
-            fmi2::crate_model_info!("MachineStructure", description, fmi2::table::variables(table()))
+            let info =
+                fmi2::crate_model_info!("MachineStructure", description, fmi2::table::variables(table()));
+            let capabilities = fmi2::Capabilities {
+                provides_directional_derivative: true,
+                ..info.capabilities
+            };
+            // CncMotion's terminal of the same name (`plug`): drive forces in, load forces out.
+            let terminals = vec![fmi2::Terminal {
+                name: "frame".into(),
+                kind: "org.cnc-motion.frameCoupling".into(),
+                description: "two-way coupling with the axis drives: drive forces in, load forces out".into(),
+                members: vec![
+                    ("driveForce".into(), "driveForce".into()),
+                    ("loadForce".into(), "loadForce".into()),
+                ],
+            }];
+            ModelInfo {
+                capabilities,
+                terminals,
+                ..info
+            }
         })
     }
 
@@ -155,7 +234,19 @@ impl fmi2::Model for MachineStructureFmu {
             Slot::Deflection => m.deflection(i),
             Slot::Acceleration => m.acceleration(i),
             Slot::LoadForce => m.load_force(i),
+            Slot::State(k, 0) => m.state[i][k].q,
+            Slot::State(k, 1) => m.state[i][k].v,
+            Slot::State(k, _) => m.state[i][k].acceleration(&m.modes[i][k], m.drive_force[i]),
         })
+    }
+
+    /// The entries of A, B, C, D ([`partial`]); variables of different axes do not interact.
+    fn partial_derivative(&self, unknown: usize, known: usize) -> f64 {
+        let (u, k) = (&table()[unknown], &table()[known]);
+        if u.axis != k.axis {
+            return 0.0;
+        }
+        partial(&self.0, u.slot, k.slot, u.axis)
     }
 
     fn set(&mut self, index: usize, value: Value) -> Result<(), String> {
@@ -227,14 +318,19 @@ pub fn model_description() -> String {
     fmi2::model_description::<MachineStructureFmu>()
 }
 
-/// sources/: this crate (its manifest as a workspace root, fmi2 beside src/), the fmi2 crate and
-/// the lock file.
+/// sources/: this crate (its manifest as a workspace root, fmi2 and fmi3 beside src/), the fmi2
+/// and fmi3 crates and the lock file.
 pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
     use fmi2::package::{manifest, sources_readme, tree};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("Cargo.toml")).map_err(|e| format!("Cargo.toml: {e}"))?;
-    let cargo = manifest(&text, &[], &[("../fmi2", "fmi2")]) + "\n[workspace]\n";
+    let cargo = manifest(
+        &text,
+        &["[dev-dependencies]"],
+        &[("../fmi2", "fmi2"), ("../fmi3", "fmi3")],
+    ) + "\n[workspace]\n";
     let fmi2_toml = std::fs::read(root.join("../fmi2/Cargo.toml")).map_err(|e| format!("fmi2: {e}"))?;
+    let fmi3_toml = std::fs::read(root.join("../fmi3/Cargo.toml")).map_err(|e| format!("fmi3: {e}"))?;
     // The workspace's lock: the versions the shipped binaries were built with (cargo drops the
     // entries this smaller workspace does not use).
     let lock = std::fs::read(root.join("../../Cargo.lock")).map_err(|e| format!("Cargo.lock: {e}"))?;
@@ -242,6 +338,7 @@ pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
         ("Cargo.toml".to_string(), cargo.into_bytes()),
         ("Cargo.lock".to_string(), lock),
         ("fmi2/Cargo.toml".to_string(), fmi2_toml),
+        ("fmi3/Cargo.toml".to_string(), fmi3_toml),
         sources_readme(
             "MachineStructure",
             "machine-structure",
@@ -251,10 +348,12 @@ pub fn sources() -> Result<Vec<fmi2::package::Entry>, String> {
     ];
     files.extend(tree(&root.join("src"), "src")?);
     files.extend(tree(&root.join("../fmi2/src"), "fmi2/src")?);
+    files.extend(tree(&root.join("../fmi3/src"), "fmi3/src")?);
     Ok(files)
 }
 
-/// Write MachineStructure.fmu from the built shared libraries (by platform).
+/// Write MachineStructure.fmu from the built shared libraries (by platform), and beside it the
+/// FMI 3.0 archive ([`fmi3::archive_path`]) with the same binaries.
 pub fn write_fmu(
     path: &Path,
     binaries: Vec<(&'static fmi2::package::Platform, std::path::PathBuf)>,
@@ -270,18 +369,28 @@ pub fn write_fmu(
          Binaries: linux64 and win64; reference result of the default experiment (no input: at rest) \
          in <code>extra/org.fmi-standard.fmi-ls-ref/</code>; Rust sources in <code>sources/</code>.</p>",
     );
-    fmi2::package::write_fmu(
-        path,
-        &fmi2::package::FmuFiles {
-            model_identifier: "MachineStructure",
-            model_description: &xml,
-            binaries,
-            resources: Vec::new(),
-            documentation_html: &doc,
-            extra: fmi2::reference::files::<MachineStructureFmu>(None, 10)?,
-            sources: sources()?,
-        },
-    )
+    let files = fmi2::package::FmuFiles {
+        fmi_version: 2,
+        model_identifier: "MachineStructure",
+        model_description: &xml,
+        binaries,
+        resources: Vec::new(),
+        documentation_html: &doc,
+        extra: fmi2::reference::files::<MachineStructureFmu>(None, 10)?,
+        sources: sources()?,
+        terminals: None,
+    };
+    fmi2::package::write_fmu(path, &files)?;
+    let xml3 = fmi3::model_description::<MachineStructureFmu>();
+    let files3 = fmi2::package::FmuFiles {
+        fmi_version: 3,
+        model_description: &xml3,
+        extra: fmi3::reference::files::<MachineStructureFmu>(None, 10)?,
+        terminals: fmi3::terminals_and_icons::<MachineStructureFmu>(),
+        ..files
+    };
+    fmi2::package::write_fmu(&fmi3::archive_path(path), &files3)
 }
 
 fmi2::export_fmi2!(crate::MachineStructureFmu);
+fmi3::export_fmi3!(crate::MachineStructureFmu);

@@ -64,15 +64,16 @@ macro_rules! export_fmi2 {
                 fmi2GetIntegerStatus(c: Component, kind: c_int, v: *mut c_int) = get_integer_status;
                 fmi2GetBooleanStatus(c: Component, kind: c_int, v: *mut Boolean) = get_boolean_status;
                 fmi2GetStringStatus(c: Component, kind: c_int, v: *mut *const c_char) = get_string_status;
+                // Refused with a log line unless the model declares the capability.
+                fmi2GetDirectionalDerivative(c: Component, u: *const Vr, nu: usize, z: *const Vr, nz: usize,
+                                             dv: *const f64, dz: *mut f64) = get_directional_derivative;
+                fmi2SetRealInputDerivatives(c: Component, vr: *const Vr, n: usize, order: *const c_int,
+                                            v: *const f64) = set_real_input_derivatives;
+                fmi2GetRealOutputDerivatives(c: Component, vr: *const Vr, n: usize, order: *const c_int,
+                                             v: *mut f64) = get_real_output_derivatives;
             }
 
             $crate::__fmi2_unsupported! {
-                fmi2GetDirectionalDerivative(c: Component, _u: *const Vr, _nu: usize, _z: *const Vr, _nz: usize,
-                                             _dv: *const f64, _dz: *mut f64) = GetDirectionalDerivative;
-                fmi2SetRealInputDerivatives(c: Component, _vr: *const Vr, _n: usize, _order: *const c_int,
-                                            _v: *const f64) = SetRealInputDerivatives;
-                fmi2GetRealOutputDerivatives(c: Component, _vr: *const Vr, _n: usize, _order: *const c_int,
-                                             _v: *mut f64) = GetRealOutputDerivatives;
                 fmi2CancelStep(c: Component) = CancelStep;
             }
         }

@@ -16,7 +16,10 @@ pub fn time_tolerance(t: f64) -> f64 {
 }
 
 /// Report a refusal to the importer's logger before an instance exists.
-unsafe fn report(functions: *const CallbackFunctions, name: &str, msg: &str) {
+///
+/// # Safety
+/// `functions` is NULL or the importer's callbacks.
+pub unsafe fn report(functions: *const CallbackFunctions, name: &str, msg: &str) {
     let Some(f) = functions.as_ref() else { return };
     let Some(logger) = f.logger else { return };
     let text = CString::new(msg.replace('\0', "").replace('%', "%%")).unwrap_or_default();
@@ -67,7 +70,7 @@ pub unsafe fn instantiate<M: Model>(
             },
         };
         let (logger, env) = match functions.as_ref() {
-            Some(f) => (f.logger, f.component_environment),
+            Some(f) => (f.logger.map(super::Logger::Fmi2), f.component_environment),
             None => (None, std::ptr::null_mut()),
         };
         let inst = Instance::<M>::new(name, resources, logger, env, logging_on != 0);
@@ -111,7 +114,7 @@ pub unsafe fn set_debug_logging<M: Model>(
                 None => return inst.error("fmi2SetDebugLogging: NULL or non-UTF-8 category"),
             }
         }
-        inst.set_debug_logging(on != 0, &names)
+        inst.set_debug_logging("fmi2SetDebugLogging", on != 0, &names)
     })
 }
 
@@ -173,55 +176,80 @@ pub unsafe fn terminate<M: Model>(c: Component) -> c_int {
 /// # Safety
 /// C ABI.
 pub unsafe fn reset<M: Model>(c: Component) -> c_int {
-    with::<M>(c, Call::Reset, |inst| {
-        inst.model = M::new(inst.resources.as_deref());
-        inst.state = State::Instantiated;
-        inst.time = 0.0;
-        inst.stop_time = None;
-        inst.last_step = Status::Ok;
-        inst.event("fmi2Reset");
-        Status::Ok
-    })
+    with::<M>(c, Call::Reset, |inst| reset_instance(inst, "fmi2Reset"))
+}
+
+/// The instance as just instantiated (fmi2Reset, fmi3Reset).
+pub fn reset_instance<M: Model>(inst: &mut Instance<M>, function: &str) -> Status {
+    inst.model = M::new(inst.resources.as_deref());
+    inst.state = State::Instantiated;
+    inst.time = 0.0;
+    inst.stop_time = None;
+    inst.last_step = Status::Ok;
+    inst.event(function);
+    Status::Ok
 }
 
 /// # Safety
 /// C ABI.
 pub unsafe fn do_step<M: Model>(c: Component, t: f64, h: f64, _no_prior: Boolean) -> c_int {
     with::<M>(c, Call::DoStep, |inst| {
-        let status = step(inst, t, h);
+        let status = match step(inst, "fmi2DoStep", t, h, false) {
+            Ok(_) => Status::Ok,
+            Err(s) => s,
+        };
         inst.last_step = status;
         status
     })
 }
 
-fn step<M: Model>(inst: &mut Instance<M>, t: f64, h: f64) -> Status {
+/// One communication step from `t` by `h` (fmi2DoStep, fmi3DoStep: `function`), the arguments
+/// checked first; with `early` the model may stop earlier ([`Model::do_step_early`]). The time
+/// advanced, or the error status (logged).
+pub fn step<M: Model>(
+    inst: &mut Instance<M>,
+    function: &str,
+    t: f64,
+    h: f64,
+    early: bool,
+) -> Result<f64, Status> {
     if !t.is_finite() {
-        return inst.error(&format!(
-            "fmi2DoStep: currentCommunicationPoint must be finite, got {t}"
-        ));
+        return Err(inst.error(&format!(
+            "{function}: currentCommunicationPoint must be finite, got {t}"
+        )));
     }
     if !(h > 0.0 && h.is_finite()) {
-        return inst.error(&format!("fmi2DoStep: communicationStepSize must be > 0, got {h}"));
+        return Err(inst.error(&format!("{function}: communicationStepSize must be > 0, got {h}")));
     }
     if (t - inst.time).abs() > time_tolerance(inst.time) {
-        return inst.error(&format!(
-            "fmi2DoStep: currentCommunicationPoint {t} is not the slave's time {}",
+        return Err(inst.error(&format!(
+            "{function}: currentCommunicationPoint {t} is not the slave's time {}",
             inst.time
-        ));
+        )));
     }
     if let Some(stop) = inst.stop_time {
         if t + h > stop + time_tolerance(stop) {
-            return inst.error(&format!(
-                "fmi2DoStep: step to {} goes past the stop time {stop}",
+            return Err(inst.error(&format!(
+                "{function}: step to {} goes past the stop time {stop}",
                 t + h
-            ));
+            )));
         }
     }
-    match inst.model.do_step(h) {
-        Ok(()) => {
+    let done = if early {
+        inst.model.do_step_early(h)
+    } else {
+        inst.model.do_step(h).map(|()| h)
+    };
+    match done {
+        // A full step ends at t + h exactly as the importer computes it.
+        Ok(dt) if dt >= h => {
             inst.time = t + h;
-            Status::Ok
+            Ok(h)
         }
-        Err(e) => inst.error(&format!("fmi2DoStep: {e}")),
+        Ok(dt) => {
+            inst.time = t + dt;
+            Ok(dt)
+        }
+        Err(e) => Err(inst.error(&format!("{function}: {e}"))),
     }
 }

@@ -10,16 +10,19 @@
 //! saved FMU state or fmi2Reset brings the instance back. A panic is fmi2Fatal, logged with its
 //! message, and for good: the instance then answers fmi2Error to everything but fmi2FreeInstance.
 
+pub mod derivatives;
 pub mod lifecycle;
 pub mod state;
 pub mod values;
 #[macro_use]
 pub mod export;
 
+pub use derivatives::*;
 pub use lifecycle::*;
 pub use state::*;
 pub use values::*;
 
+pub use crate::instance::Logger;
 use crate::instance::{Instance, LoggerFn, State, Status};
 use crate::Model;
 use std::ffi::{c_char, c_int, c_uint, c_void, CStr};
@@ -155,7 +158,11 @@ impl Call {
             Call::SerializedFmuStateSize => ("fmi2SerializedFMUstateSize", ANY),
             Call::SerializeFmuState => ("fmi2SerializeFMUstate", ANY),
             Call::DeserializeFmuState => ("fmi2DeSerializeFMUstate", ANY),
-            Call::GetDirectionalDerivative => ("fmi2GetDirectionalDerivative", GET),
+            // The Jacobian at a communication point (the model's states are knowns there).
+            Call::GetDirectionalDerivative => (
+                "fmi2GetDirectionalDerivative",
+                STEP_COMPLETE | STEP_FAILED | TERMINATED | ERROR,
+            ),
             Call::SetRealInputDerivatives => {
                 ("fmi2SetRealInputDerivatives", INSTANTIATED | INIT | STEP_COMPLETE)
             }
@@ -185,15 +192,32 @@ impl Call {
 /// # Safety
 /// `c` is NULL or an instance of model `M` from `instantiate`.
 pub unsafe fn with<M: Model>(c: Component, call: Call, f: impl FnOnce(&mut Instance<M>) -> Status) -> c_int {
+    let (name, allowed) = call.spec();
+    guard(c, name, allowed, State::Error, "fmi2FreeInstance", f)
+}
+
+/// The state machine of both versions: run `f` on the instance behind `c` if its state is in
+/// the mask `allowed`; an Error answer moves the instance to `on_error` (FMI 2: the Error state;
+/// FMI 3.0 §2.3.1: Terminated), a panic to Fatal for good (`free` names the one call left).
+///
+/// # Safety
+/// `c` is NULL or an instance of model `M`.
+pub unsafe fn guard<M: Model>(
+    c: Component,
+    name: &str,
+    allowed: u16,
+    on_error: State,
+    free: &str,
+    f: impl FnOnce(&mut Instance<M>) -> Status,
+) -> c_int {
     if c.is_null() {
         return Status::Error as c_int;
     }
     let inst = &mut *(c as *mut Instance<M>);
-    let (name, allowed) = call.spec();
     if inst.state == State::Fatal {
         let _ = catch_unwind(AssertUnwindSafe(|| {
             inst.error(&format!(
-                "{name}: the instance failed fatally; only fmi2FreeInstance is allowed"
+                "{name}: the instance failed fatally; only {free} is allowed"
             ))
         }));
         return Status::Error as c_int;
@@ -206,7 +230,7 @@ pub unsafe fn with<M: Model>(c: Component, call: Call, f: impl FnOnce(&mut Insta
     }));
     match result {
         Ok(Status::Error) => {
-            inst.state = State::Error;
+            inst.state = on_error;
             Status::Error as c_int
         }
         Ok(s) => s as c_int,
@@ -217,7 +241,7 @@ pub unsafe fn with<M: Model>(c: Component, call: Call, f: impl FnOnce(&mut Insta
                 inst.log(
                     Status::Fatal,
                     2,
-                    &format!("{name}: internal error (panic: {message}); the instance is unusable, only fmi2FreeInstance is allowed"),
+                    &format!("{name}: internal error (panic: {message}); the instance is unusable, only {free} is allowed"),
                 )
             }));
             Status::Fatal as c_int
@@ -236,7 +260,11 @@ pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> &str {
     }
 }
 
-pub(crate) unsafe fn opt_str<'a>(p: *const c_char) -> Option<&'a str> {
+/// A C string as UTF-8 (None for NULL or invalid UTF-8).
+///
+/// # Safety
+/// `p` is NULL or a NUL-terminated string.
+pub unsafe fn opt_str<'a>(p: *const c_char) -> Option<&'a str> {
     if p.is_null() {
         None
     } else {
@@ -245,7 +273,10 @@ pub(crate) unsafe fn opt_str<'a>(p: *const c_char) -> Option<&'a str> {
 }
 
 /// Slices behind array arguments; NULL is only allowed with n = 0.
-pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
+///
+/// # Safety
+/// `p` is NULL or points to `n` values.
+pub unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
     if n == 0 {
         Some(&[])
     } else if p.is_null() {
@@ -255,7 +286,9 @@ pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
     }
 }
 
-pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
+/// # Safety
+/// `p` is NULL or points to `n` values.
+pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
     if n == 0 {
         Some(&mut [])
     } else if p.is_null() {

@@ -27,28 +27,130 @@ unsafe fn ours<'a, M: Model>(inst: &Instance<M>, state: FmuState) -> Option<&'a 
     (!state.is_null() && inst.snapshots.contains(&(state as usize))).then(|| &*(state as *const Snapshot<M>))
 }
 
+// The FMU-state functions of both versions on an instance (`f`: the C name, for messages).
+
+/// fmi2GetFMUstate / fmi3GetFMUState.
+///
+/// # Safety
+/// `state` is NULL or the importer's FMU-state pointer.
+pub unsafe fn get_state_of<M: Model>(inst: &mut Instance<M>, f: &str, state: *mut FmuState) -> Status {
+    if state.is_null() {
+        return inst.error(&format!("{f}: FMUstate pointer is NULL"));
+    }
+    let snap = inst.snapshot();
+    hand_out(inst, state, snap);
+    Status::Ok
+}
+
+/// fmi2SetFMUstate / fmi3SetFMUState.
+///
+/// # Safety
+/// `state` is any pointer the importer passes.
+pub unsafe fn set_state_of<M: Model>(inst: &mut Instance<M>, f: &str, state: FmuState) -> Status {
+    match ours(inst, state) {
+        Some(snap) => {
+            inst.restore(snap);
+            Status::Ok
+        }
+        None => inst.error(&format!("{f}: not an FMU state of this instance")),
+    }
+}
+
+/// fmi2FreeFMUstate / fmi3FreeFMUState.
+///
+/// # Safety
+/// `state` is NULL or the importer's FMU-state pointer.
+pub unsafe fn free_state_of<M: Model>(inst: &mut Instance<M>, f: &str, state: *mut FmuState) -> Status {
+    if state.is_null() || (*state).is_null() {
+        return Status::Ok;
+    }
+    let p = *state as usize;
+    let Some(k) = inst.snapshots.iter().position(|&q| q == p) else {
+        return inst.error(&format!("{f}: not an FMU state of this instance"));
+    };
+    inst.snapshots.swap_remove(k);
+    drop(Box::from_raw(p as *mut Snapshot<M>));
+    *state = std::ptr::null_mut();
+    Status::Ok
+}
+
+/// fmi2SerializedFMUstateSize / fmi3SerializedFMUStateSize.
+///
+/// # Safety
+/// `size` is NULL or writable.
+pub unsafe fn state_size_of<M: Model>(
+    inst: &mut Instance<M>,
+    f: &str,
+    state: FmuState,
+    size: *mut usize,
+) -> Status {
+    match ours(inst, state) {
+        Some(snap) if !size.is_null() => {
+            *size = inst.serialize(snap).len();
+            Status::Ok
+        }
+        _ => inst.error(&format!("{f}: bad FMU state or NULL size")),
+    }
+}
+
+/// fmi2SerializeFMUstate / fmi3SerializeFMUState.
+///
+/// # Safety
+/// `out` is NULL or `size` writable bytes.
+pub unsafe fn serialize_of<M: Model>(
+    inst: &mut Instance<M>,
+    f: &str,
+    state: FmuState,
+    out: *mut u8,
+    size: usize,
+) -> Status {
+    let Some(snap) = ours(inst, state).filter(|_| !out.is_null()) else {
+        return inst.error(&format!("{f}: bad FMU state or NULL buffer"));
+    };
+    let bytes = inst.serialize(snap);
+    if bytes.len() != size {
+        return inst.error(&format!("{f}: size {size}, the state needs {}", bytes.len()));
+    }
+    std::ptr::copy_nonoverlapping(bytes.as_ptr(), out, size);
+    Status::Ok
+}
+
+/// fmi2DeSerializeFMUstate / fmi3DeserializeFMUState.
+///
+/// # Safety
+/// `bytes` is NULL or `size` readable bytes; `state` NULL or the importer's FMU-state pointer.
+pub unsafe fn deserialize_of<M: Model>(
+    inst: &mut Instance<M>,
+    f: &str,
+    bytes: *const u8,
+    size: usize,
+    state: *mut FmuState,
+) -> Status {
+    let (Some(bytes), false) = (slice(bytes, size), state.is_null()) else {
+        return inst.error(&format!("{f}: NULL argument"));
+    };
+    match inst.deserialize(bytes) {
+        Ok(snap) => {
+            hand_out(inst, state, snap);
+            Status::Ok
+        }
+        Err(e) => inst.error(&format!("{f}: {e}")),
+    }
+}
+
 /// # Safety
 /// C ABI.
 pub unsafe fn get_fmu_state<M: Model>(c: Component, state: *mut FmuState) -> c_int {
     with::<M>(c, Call::GetFmuState, |inst| {
-        if state.is_null() {
-            return inst.error("fmi2GetFMUstate: FMUstate pointer is NULL");
-        }
-        let snap = inst.snapshot();
-        hand_out(inst, state, snap);
-        Status::Ok
+        get_state_of(inst, "fmi2GetFMUstate", state)
     })
 }
 
 /// # Safety
 /// C ABI.
 pub unsafe fn set_fmu_state<M: Model>(c: Component, state: FmuState) -> c_int {
-    with::<M>(c, Call::SetFmuState, |inst| match ours(inst, state) {
-        Some(snap) => {
-            inst.restore(snap);
-            Status::Ok
-        }
-        None => inst.error("fmi2SetFMUstate: not an FMU state of this instance"),
+    with::<M>(c, Call::SetFmuState, |inst| {
+        set_state_of(inst, "fmi2SetFMUstate", state)
     })
 }
 
@@ -56,29 +158,15 @@ pub unsafe fn set_fmu_state<M: Model>(c: Component, state: FmuState) -> c_int {
 /// C ABI.
 pub unsafe fn free_fmu_state<M: Model>(c: Component, state: *mut FmuState) -> c_int {
     with::<M>(c, Call::FreeFmuState, |inst| {
-        if state.is_null() || (*state).is_null() {
-            return Status::Ok;
-        }
-        let p = *state as usize;
-        let Some(k) = inst.snapshots.iter().position(|&q| q == p) else {
-            return inst.error("fmi2FreeFMUstate: not an FMU state of this instance");
-        };
-        inst.snapshots.swap_remove(k);
-        drop(Box::from_raw(p as *mut Snapshot<M>));
-        *state = std::ptr::null_mut();
-        Status::Ok
+        free_state_of(inst, "fmi2FreeFMUstate", state)
     })
 }
 
 /// # Safety
 /// C ABI.
 pub unsafe fn serialized_fmu_state_size<M: Model>(c: Component, state: FmuState, size: *mut usize) -> c_int {
-    with::<M>(c, Call::SerializedFmuStateSize, |inst| match ours(inst, state) {
-        Some(snap) if !size.is_null() => {
-            *size = Instance::<M>::serialize(snap).len();
-            Status::Ok
-        }
-        _ => inst.error("fmi2SerializedFMUstateSize: bad FMU state or NULL size"),
+    with::<M>(c, Call::SerializedFmuStateSize, |inst| {
+        state_size_of(inst, "fmi2SerializedFMUstateSize", state, size)
     })
 }
 
@@ -91,18 +179,7 @@ pub unsafe fn serialize_fmu_state<M: Model>(
     size: usize,
 ) -> c_int {
     with::<M>(c, Call::SerializeFmuState, |inst| {
-        let Some(snap) = ours(inst, state).filter(|_| !out.is_null()) else {
-            return inst.error("fmi2SerializeFMUstate: bad FMU state or NULL buffer");
-        };
-        let bytes = Instance::<M>::serialize(snap);
-        if bytes.len() != size {
-            return inst.error(&format!(
-                "fmi2SerializeFMUstate: size {size}, the state needs {}",
-                bytes.len()
-            ));
-        }
-        std::ptr::copy_nonoverlapping(bytes.as_ptr(), out, size);
-        Status::Ok
+        serialize_of(inst, "fmi2SerializeFMUstate", state, out, size)
     })
 }
 
@@ -115,16 +192,7 @@ pub unsafe fn deserialize_fmu_state<M: Model>(
     state: *mut FmuState,
 ) -> c_int {
     with::<M>(c, Call::DeserializeFmuState, |inst| {
-        let (Some(bytes), false) = (slice(bytes, size), state.is_null()) else {
-            return inst.error("fmi2DeSerializeFMUstate: NULL argument");
-        };
-        match inst.deserialize(bytes) {
-            Ok(snap) => {
-                hand_out(inst, state, snap);
-                Status::Ok
-            }
-            Err(e) => inst.error(&format!("fmi2DeSerializeFMUstate: {e}")),
-        }
+        deserialize_of(inst, "fmi2DeSerializeFMUstate", bytes, size, state)
     })
 }
 
