@@ -37,9 +37,41 @@ impl Outputs {
     }
 }
 
+/// Whether every value is finite, in one test: x·0 is 0 for a finite x and NaN otherwise.
+fn all_finite<const N: usize>(zero: &mut f64, values: [f64; N]) {
+    for v in values {
+        *zero += v * 0.0;
+    }
+}
+
 impl Engine {
-    /// Outputs are never NaN or infinite with status OK: the first one that is, named.
+    /// Outputs are never NaN or infinite with status OK: the first one that is, named. Called
+    /// every tick by the CLI: one test of everything first, the names only on a failure.
     pub fn check_outputs(&self) -> Result<(), String> {
+        let t = self.tick();
+        let mut zero = t.feed * 0.0;
+        for x in [t.p, t.v, t.a] {
+            all_finite(&mut zero, x);
+        }
+        if self.servo() {
+            let o = &self.outputs;
+            for s in &o.axes {
+                all_finite(&mut zero, [s.position, s.velocity, s.motor_torque]);
+            }
+            zero += o.contour_error * 0.0;
+        } else {
+            // The actual axes are the command; the contour error is 0 when the tangent is
+            // finite (the point is on its line), NaN otherwise.
+            all_finite(&mut zero, t.tangent);
+        }
+        if zero == 0.0 {
+            return Ok(());
+        }
+        self.name_non_finite()
+    }
+
+    /// The first output that is NaN or infinite, named.
+    fn name_non_finite(&self) -> Result<(), String> {
         let (t, axes) = (self.tick(), self.axes());
         let named: [(&str, [f64; 3]); 6] = [
             ("command.position", t.p),
