@@ -37,11 +37,14 @@ impl Outputs {
     }
 }
 
-/// Whether every value is finite, in one test: x·0 is 0 for a finite x and NaN otherwise.
-fn all_finite<const N: usize>(zero: &mut f64, values: [f64; N]) {
-    for v in values {
-        *zero += v * 0.0;
-    }
+/// Exponent bits all set: infinite or NaN.
+const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+
+/// Whether any value is infinite or NaN (independent integer tests, no chain of float adds).
+fn any_non_finite(values: &[f64]) -> bool {
+    values
+        .iter()
+        .fold(false, |bad, v| bad | (v.to_bits() & EXPONENT == EXPONENT))
 }
 
 impl Engine {
@@ -49,22 +52,22 @@ impl Engine {
     /// every tick by the CLI: one test of everything first, the names only on a failure.
     pub fn check_outputs(&self) -> Result<(), String> {
         let t = self.tick();
-        let mut zero = t.feed * 0.0;
-        for x in [t.p, t.v, t.a] {
-            all_finite(&mut zero, x);
-        }
-        if self.servo() {
+        let [p, v, a] = [t.p, t.v, t.a];
+        let command = [p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2], t.feed];
+        let bad = if self.servo() {
             let o = &self.outputs;
-            for s in &o.axes {
-                all_finite(&mut zero, [s.position, s.velocity, s.motor_torque]);
-            }
-            zero += o.contour_error * 0.0;
+            let [x, y, z] = o.axes.map(|s| [s.position, s.velocity, s.motor_torque]);
+            any_non_finite(&command)
+                || any_non_finite(&x)
+                || any_non_finite(&y)
+                || any_non_finite(&z)
+                || !o.contour_error.is_finite()
         } else {
             // The actual axes are the command; the contour error is 0 when the tangent is
             // finite (the point is on its line), NaN otherwise.
-            all_finite(&mut zero, t.tangent);
-        }
-        if zero == 0.0 {
+            any_non_finite(&command) || any_non_finite(&t.tangent)
+        };
+        if !bad {
             return Ok(());
         }
         self.name_non_finite()
