@@ -2,7 +2,9 @@
 //! user runs it (reader → path → look-ahead → feed → ticks, with the CLI's per-tick checks and
 //! maxima; no CSV), on 100 000 and 1 000 000 lines of benches/common/cam_like.rs, in the default
 //! corner mode and in exact stop. Throughput in blocks; the ticks per block are printed once.
-//! `CAM_SIZES=100000` (comma-separated) picks the sizes.
+//! `CAM_SIZES=100000` (comma-separated) picks the sizes; `CAM_BASELINE_BIN=/path/to/cnc-motion`
+//! adds that binary's runs to each group (before/after in one run: build the old commit's CLI,
+//! copy it aside).
 
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
@@ -40,8 +42,8 @@ fn machine_file(corner: &str) -> PathBuf {
 }
 
 /// One CLI run; the summary's ticks and motion blocks.
-fn run_cli(program: &Path, machine: &Path) -> (u64, u64) {
-    let out = Command::new(env!("CARGO_BIN_EXE_cnc-motion"))
+fn run_cli(bin: &Path, program: &Path, machine: &Path) -> (u64, u64) {
+    let out = Command::new(bin)
         .arg("run")
         .arg(program)
         .arg("--machine")
@@ -62,7 +64,17 @@ fn sizes() -> Vec<usize> {
         .unwrap_or_else(|| vec![100_000, 1_000_000])
 }
 
+/// This build's CLI, and the baseline's when given.
+fn binaries() -> Vec<(&'static str, PathBuf)> {
+    let mut bins = vec![("", PathBuf::from(env!("CARGO_BIN_EXE_cnc-motion")))];
+    if let Some(old) = std::env::var_os("CAM_BASELINE_BIN") {
+        bins.push(("_baseline", PathBuf::from(old)));
+    }
+    bins
+}
+
 fn bench(c: &mut Criterion) {
+    let bins = binaries();
     for moves in sizes() {
         let program = program_file(moves);
         let mut g = c.benchmark_group(format!("cam_like_{moves}"));
@@ -71,15 +83,17 @@ fn bench(c: &mut Criterion) {
         g.measurement_time(Duration::from_secs(if moves > 200_000 { 60 } else { 10 }));
         for corner in ["smooth", "exact_stop"] {
             let machine = machine_file(corner);
-            let (ticks, blocks) = run_cli(&program, &machine);
+            let (ticks, blocks) = run_cli(&bins[0].1, &program, &machine);
             eprintln!(
                 "cam_like {moves} lines, {corner}: {blocks} blocks, {ticks} ticks ({:.1} a block)",
                 ticks as f64 / blocks as f64
             );
             g.throughput(Throughput::Elements(blocks));
-            g.bench_function(format!("cli_run_{corner}"), |b| {
-                b.iter(|| run_cli(&program, &machine))
-            });
+            for (suffix, bin) in &bins {
+                g.bench_function(format!("cli_run_{corner}{suffix}"), |b| {
+                    b.iter(|| run_cli(bin, &program, &machine))
+                });
+            }
         }
         g.finish();
     }
