@@ -481,8 +481,8 @@ mod tests {
     }
 
     /// The stop limits computed when needed plan the same speeds, bit for bit, as all of them
-    /// computed when the segments come in (as before issue 22): over stops, short and long
-    /// segments, two window sizes.
+    /// computed when the segments come in (as before issue 22): every law, over stops, short
+    /// and long segments, two window sizes.
     #[test]
     fn lazy_stop_limits_plan_the_same() {
         let mut x: u64 = 7;
@@ -493,38 +493,80 @@ mod tests {
             (x >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut at = 0.0;
-        let blocks: Vec<PathBlock> = (0..400)
+        // Short blocks at speed, junction limits anywhere below the feed: slowing to a third
+        // of a speed takes longer than stopping, so the stop limit decides many entries.
+        let blocks: Vec<PathBlock> = (0..2000)
             .map(|_| {
-                let length = 5e-5 * 40.0f64.powf(unit());
-                let feed = 0.02 + 0.08 * unit();
-                let v_end_max = if unit() < 0.05 { 0.0 } else { 0.1 * unit() };
+                let length = 2e-5 * 50.0f64.powf(unit());
+                let feed = 0.02 + 0.18 * unit();
+                let v_end_max = if unit() < 0.05 { 0.0 } else { feed * unit() };
                 at += length;
                 line_block(at - length, at, feed, v_end_max)
             })
             .collect();
-        for window in [7, 32] {
-            let lazy = plan_all(ProfileKind::Scurve7, &blocks, window);
-            let mut planner = Planner::new(ProfileKind::Scurve7, window);
+        for (kind, window) in ProfileKind::ALL.into_iter().flat_map(|k| [(k, 7), (k, 32)]) {
+            let lazy = plan_all(kind, &blocks, window);
+            let mut planner = Planner::new(kind, window);
             let mut out = VecDeque::new();
-            let mut computed = 0;
             for b in &blocks {
                 planner.admit(b.clone());
                 let e = planner.window.back_mut().unwrap();
-                if e.v_in_stop.is_nan() {
-                    let length = e.block.segment.length();
-                    e.v_in_stop = max_entry(ProfileKind::Scurve7, length, 0.0, &e.block.limits);
-                    computed += 1;
-                }
+                assert!(e.v_in_stop.is_nan(), "not computed on admission");
+                e.v_in_stop = max_entry(kind, e.block.segment.length(), 0.0, &e.block.limits);
                 planner.release(&mut out);
             }
             planner.finish(&mut out);
-            assert_eq!(computed, blocks.len());
             assert_eq!(out.len(), lazy.len());
             for (eager, lazy) in out.iter().zip(&lazy) {
-                assert_eq!((eager.v_in, eager.v_out), (lazy.v_in, lazy.v_out));
+                assert_eq!((eager.v_in, eager.v_out), (lazy.v_in, lazy.v_out), "{kind:?}");
                 assert_eq!(eager.profile, lazy.profile);
             }
         }
+    }
+
+    /// One entry's limit, lazy against eager, over exits and caps where the stop decides
+    /// (slowing to a third of a speed takes longer than stopping: seed 004's ramp distance is
+    /// not monotone in the exit) and where it does not.
+    #[test]
+    fn lazy_stop_limit_of_one_entry() {
+        let mut decided_by_stop = 0;
+        for kind in ProfileKind::ALL {
+            for length in [2e-5, 1e-4, 5e-4, 2e-3] {
+                let block = line_block(0.0, length, 0.2, 1.0);
+                let stop = max_entry(kind, length, 0.0, &block.limits);
+                for i in 0..=40 {
+                    let v_exit = stop * i as f64 / 40.0;
+                    for cap in [0.5 * stop, stop, 2.0 * stop, 0.2] {
+                        let mut e = Entry {
+                            block: block.clone(),
+                            v_in_cap: cap,
+                            v_in_lim: f64::NAN,
+                            v_in_stop: f64::NAN,
+                            v_feed: 0.2,
+                        };
+                        let slow = max_entry(kind, length, v_exit, &block.limits);
+                        let eager = if cap <= v_exit {
+                            cap.min(v_exit)
+                        } else {
+                            cap.min(slow.max(stop))
+                        };
+                        let lazy = entry_limit(kind, &mut e, v_exit, true);
+                        assert_eq!(
+                            lazy.to_bits(),
+                            eager.to_bits(),
+                            "{kind:?} {length} {v_exit} {cap}"
+                        );
+                        if cap > v_exit && stop > slow && cap > slow {
+                            decided_by_stop += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            decided_by_stop > 0,
+            "the stop limit never decided: the test tests nothing"
+        );
     }
 
     #[test]
