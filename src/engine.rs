@@ -181,18 +181,23 @@ impl Engine {
 
     /// Actual axis states after the drives (equal to the command when the servo is off).
     pub fn axes(&self) -> [AxisState; 3] {
-        self.outputs.axes
+        self.outputs().axes
     }
 
     /// Distance of the actual tool point from the programmed path (m), measured from the tangent
     /// line at the commanded point.
     pub fn contour_error(&self) -> f64 {
-        self.outputs.contour_error
+        self.outputs().contour_error
     }
 
-    /// Everything the outputs read, as of the end of the last step.
-    pub fn outputs(&self) -> &Outputs {
-        &self.outputs
+    /// Everything the outputs read, as of the end of the last step: kept once per step with the
+    /// drives on; without them a view of the command, made when asked (a caller that does not
+    /// read them, the CLI without `--servo`, pays nothing per tick).
+    pub fn outputs(&self) -> Outputs {
+        match self.drives {
+            Some(_) => self.outputs,
+            None => Outputs::of(&self.tick, None),
+        }
     }
 
     /// The block being executed and the path time left in it (s), None between blocks.
@@ -336,6 +341,9 @@ impl Engine {
     /// Drives from the engine's time to `phase` periods past tick `ticks` (1: the next tick),
     /// the current command held (zero-order hold).
     fn drives_to(&mut self, phase: f64) {
+        if self.drives.is_none() {
+            return;
+        }
         // (1 − 0)·T is T exactly: whole ticks are always the same step.
         let dt = (phase - self.phase) * self.machine.interpolation_period;
         let commands: [AxisCommand; 3] = std::array::from_fn(|i| self.command(i));
@@ -347,7 +355,9 @@ impl Engine {
     }
 
     fn refresh_outputs(&mut self) {
-        self.outputs = Outputs::of(&self.tick, self.drives.as_deref());
+        if let Some(drives) = self.drives.as_deref() {
+            self.outputs = Outputs::of(&self.tick, Some(drives));
+        }
     }
 
     /// One interpolation tick at time `t`.
@@ -385,11 +395,10 @@ impl Engine {
             && self.program_done
             && self.planner.pending() == 0
             && self.control.held() == 0;
-        let tick = self.interp.sample(t, finished);
+        self.interp.sample_into(t, finished, &mut self.tick);
         if finished && self.finish_tick.is_none() {
             self.finish_tick = Some(self.ticks);
         }
-        self.tick = tick;
         Ok(())
     }
 

@@ -14,14 +14,16 @@ use crate::valid::{at_most, within};
 // 7: reader: motion modes G5…, `%`, splines, work rotations, queued blocks kept, cycle words;
 // 8: seed 004's transition in time (no arc-length table), chains' source-line marks;
 // 9: postcard instead of bincode; time as whole ticks and a phase, no servo clock;
-// 10: speed bands on path blocks and the banded S-curve profile.
-const STATE_VERSION: u32 = 10;
+// 10: speed bands on path blocks and the banded S-curve profile; 11: a window segment's stop
+// limit NaN until needed.
+const STATE_VERSION: u32 = 11;
 
 /// Fields whose numbers may be more than finite and moderate (see `valid::numbers`): the
 /// planner's "not computed yet" and "no junction limit", a quintic's power coefficients.
 const WIDER: &[(&str, Wider)] = &[
     ("junction_prev", Wider::Marker),
     ("v_in_lim", Wider::Marker),
+    ("v_in_stop", Wider::Marker),
     ("Hermite.c", Wider::Finite),
 ];
 

@@ -214,8 +214,16 @@ impl Interpolator {
 
     /// The motion at the current path time.
     pub fn sample(&self, t: f64, finished: bool) -> Tick {
+        let mut tick = Tick::default();
+        self.sample_into(t, finished, &mut tick);
+        tick
+    }
+
+    /// [`Interpolator::sample`] written in place (the engine's tick, every period: no copy of
+    /// the record).
+    pub fn sample_into(&self, t: f64, finished: bool, out: &mut Tick) {
         let Some(c) = &self.current else {
-            return Tick {
+            *out = Tick {
                 t,
                 line: self.last_line,
                 p: self.rest,
@@ -224,10 +232,11 @@ impl Interpolator {
                 finished,
                 ..Tick::default()
             };
+            return;
         };
         let seg = &c.planned.block.segment;
         if let Segment::Dwell { at, .. } = seg {
-            return Tick {
+            *out = Tick {
                 t,
                 line: c.planned.block.line,
                 p: *at,
@@ -236,12 +245,13 @@ impl Interpolator {
                 finished: false,
                 ..Tick::default()
             };
+            return;
         }
         let k = c.planned.profile.at(c.tau);
         let s = k.s.clamp(0.0, seg.length());
         let g = seg.eval(s);
         let (v, a, j) = axis_motion(&g, &k);
-        Tick {
+        *out = Tick {
             t,
             line: seg.line_at(s).unwrap_or(c.planned.block.line),
             p: g.p,
@@ -255,7 +265,7 @@ impl Interpolator {
             distance: self.distance_done + s,
             tangent: g.d1,
             finished: false,
-        }
+        };
     }
 }
 

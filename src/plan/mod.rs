@@ -56,7 +56,9 @@ struct Entry {
     v_in_cap: f64,
     /// Entry limit from the backward pass (NaN until computed).
     v_in_lim: f64,
-    /// Largest entry speed from which the segment can stop within its length (fixed, cached).
+    /// Largest entry speed from which the segment can stop within its length (fixed; NaN until
+    /// a backward pass needs it: on a program that cruises it rarely does, and it costs a root
+    /// solve).
     v_in_stop: f64,
     /// Feed for this segment with the override applied (the block keeps the programmed one).
     v_feed: f64,
@@ -122,7 +124,9 @@ impl Planner {
         for e in &self.window {
             e.block.check_state()?;
             within("entry cap", e.v_in_cap, 0.0, MAX_SPEED_M_S)?;
-            within("stop entry", e.v_in_stop, 0.0, MAX_SPEED_M_S)?;
+            if !e.v_in_stop.is_nan() {
+                within("stop entry", e.v_in_stop, 0.0, MAX_SPEED_M_S)?;
+            }
             within("window feed", e.v_feed, 0.0, MAX_SPEED_M_S)?;
             if !e.v_in_lim.is_nan() {
                 within("entry limit", e.v_in_lim, 0.0, MAX_SPEED_M_S)?;
@@ -155,6 +159,11 @@ impl Planner {
     /// Take one segment; emit planned segments to `out` when the window is full.
     pub fn push(&mut self, block: PathBlock, out: &mut VecDeque<Planned>) {
         self.admit(block);
+        self.release(out);
+    }
+
+    /// Plan and emit a batch when the window is full.
+    fn release(&mut self, out: &mut VecDeque<Planned>) {
         // A full window releases a small batch: one backward pass serves EMIT_BATCH segments
         // (the pass re-plans the deceleration zone at the window's end, tens of segments on
         // micro-segment programs), and no tick pays for a large burst.
@@ -205,7 +214,7 @@ impl Planner {
         let v_in_stop = if dwell || block.constant_speed {
             0.0
         } else {
-            self.banded(&block).max_entry(block.segment.length(), 0.0)
+            f64::NAN
         };
         self.window.push_back(Entry {
             block,
@@ -263,29 +272,15 @@ impl Planner {
             } else {
                 v_next.min(e.block.v_end_max)
             };
-            let lim = self.entry_limit(e, v_exit, next_can_start_at_rest);
-            next_can_start_at_rest = !e.block.constant_speed;
+            let constant_speed = e.block.constant_speed;
             let e = &mut self.window[i];
+            let lim = entry_limit(self.kind, e, v_exit, next_can_start_at_rest);
+            next_can_start_at_rest = !constant_speed;
             if lim == e.v_in_lim {
                 break;
             }
             e.v_in_lim = lim;
             v_next = lim;
-        }
-    }
-
-    /// Largest entry speed of a segment whose exit may be at most `v_exit`.
-    fn entry_limit(&self, e: &Entry, v_exit: f64, may_stop: bool) -> f64 {
-        let cap = e.v_in_cap;
-        if cap <= v_exit || e.block.constant_speed {
-            return cap.min(v_exit);
-        }
-        let length = e.block.segment.length();
-        let slow_to_next = self.banded(&e.block).max_entry(length, v_exit);
-        if may_stop {
-            cap.min(slow_to_next.max(e.v_in_stop))
-        } else {
-            cap.min(slow_to_next)
         }
     }
 
@@ -396,10 +391,39 @@ impl Planner {
     }
 }
 
+/// Largest entry speed of a segment whose exit may be at most `v_exit`. Its stop limit is
+/// computed the first time it can change the result (the slow-down limit below the cap), or
+/// taken from the slow-down limit itself when that is the stop (`v_exit` +0: the same solve).
+fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) -> f64 {
+    let cap = e.v_in_cap;
+    if cap <= v_exit || e.block.constant_speed {
+        return cap.min(v_exit);
+    }
+    let length = e.block.segment.length();
+    let banded = Banded {
+        kind,
+        top: &e.block.limits,
+        bands: &e.block.bands,
+    };
+    let slow_to_next = banded.max_entry(length, v_exit);
+    if v_exit.to_bits() == 0 && e.v_in_stop.is_nan() {
+        e.v_in_stop = slow_to_next;
+    }
+    // Above the cap the result is the cap, whatever the stop limit.
+    if !may_stop || slow_to_next > cap {
+        return cap.min(slow_to_next);
+    }
+    if e.v_in_stop.is_nan() {
+        e.v_in_stop = banded.max_entry(length, 0.0);
+    }
+    cap.min(slow_to_next.max(e.v_in_stop))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::config::Machine;
+    use crate::feed::max_entry;
     use crate::geometry::Line;
     use crate::path::line_limits;
 
@@ -455,6 +479,95 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The stop limits computed when needed plan the same speeds, bit for bit, as all of them
+    /// computed when the segments come in (as before issue 22): every law, over stops, short
+    /// and long segments, two window sizes.
+    #[test]
+    fn lazy_stop_limits_plan_the_same() {
+        let mut x: u64 = 7;
+        let mut unit = move || {
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut at = 0.0;
+        // Short blocks at speed, junction limits anywhere below the feed: slowing to a third
+        // of a speed takes longer than stopping, so the stop limit decides many entries.
+        let blocks: Vec<PathBlock> = (0..2000)
+            .map(|_| {
+                let length = 2e-5 * 50.0f64.powf(unit());
+                let feed = 0.02 + 0.18 * unit();
+                let v_end_max = if unit() < 0.05 { 0.0 } else { feed * unit() };
+                at += length;
+                line_block(at - length, at, feed, v_end_max)
+            })
+            .collect();
+        for (kind, window) in ProfileKind::ALL.into_iter().flat_map(|k| [(k, 7), (k, 32)]) {
+            let lazy = plan_all(kind, &blocks, window);
+            let mut planner = Planner::new(kind, window);
+            let mut out = VecDeque::new();
+            for b in &blocks {
+                planner.admit(b.clone());
+                let e = planner.window.back_mut().unwrap();
+                assert!(e.v_in_stop.is_nan(), "not computed on admission");
+                e.v_in_stop = max_entry(kind, e.block.segment.length(), 0.0, &e.block.limits);
+                planner.release(&mut out);
+            }
+            planner.finish(&mut out);
+            assert_eq!(out.len(), lazy.len());
+            for (eager, lazy) in out.iter().zip(&lazy) {
+                assert_eq!((eager.v_in, eager.v_out), (lazy.v_in, lazy.v_out), "{kind:?}");
+                assert_eq!(eager.profile, lazy.profile);
+            }
+        }
+    }
+
+    /// One entry's limit, lazy against eager, over exits and caps where the stop decides
+    /// (slowing to a third of a speed takes longer than stopping: seed 004's ramp distance is
+    /// not monotone in the exit) and where it does not.
+    #[test]
+    fn lazy_stop_limit_of_one_entry() {
+        let mut decided_by_stop = 0;
+        for kind in ProfileKind::ALL {
+            for length in [2e-5, 1e-4, 5e-4, 2e-3] {
+                let block = line_block(0.0, length, 0.2, 1.0);
+                let stop = max_entry(kind, length, 0.0, &block.limits);
+                for i in 0..=40 {
+                    let v_exit = stop * i as f64 / 40.0;
+                    for cap in [0.5 * stop, stop, 2.0 * stop, 0.2] {
+                        let mut e = Entry {
+                            block: block.clone(),
+                            v_in_cap: cap,
+                            v_in_lim: f64::NAN,
+                            v_in_stop: f64::NAN,
+                            v_feed: 0.2,
+                        };
+                        let slow = max_entry(kind, length, v_exit, &block.limits);
+                        let eager = if cap <= v_exit {
+                            cap.min(v_exit)
+                        } else {
+                            cap.min(slow.max(stop))
+                        };
+                        let lazy = entry_limit(kind, &mut e, v_exit, true);
+                        assert_eq!(
+                            lazy.to_bits(),
+                            eager.to_bits(),
+                            "{kind:?} {length} {v_exit} {cap}"
+                        );
+                        if cap > v_exit && stop > slow && cap > slow {
+                            decided_by_stop += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            decided_by_stop > 0,
+            "the stop limit never decided: the test tests nothing"
+        );
     }
 
     #[test]

@@ -3,7 +3,7 @@
 use crate::summary;
 use clap::Args;
 use cnc_motion::config::Machine;
-use cnc_motion::engine::Engine;
+use cnc_motion::engine::{Engine, Outputs};
 use cnc_motion::gcode::ProgramSource;
 use cnc_motion::interp::{Differences, Tick};
 use cnc_motion::path::Segment;
@@ -121,7 +121,8 @@ struct Maxima {
 }
 
 impl Maxima {
-    fn take(&mut self, tick: &Tick, emitted: (Vec3, Vec3, Vec3), engine: &Engine) {
+    /// The command's maxima, from the tick and its finite differences.
+    fn take(&mut self, tick: &Tick, emitted: (Vec3, Vec3, Vec3)) {
         let (dv, da, dj) = emitted;
         for (peaks, law, shown) in [
             (&mut self.v, tick.v, dv),
@@ -131,11 +132,15 @@ impl Maxima {
             peaks.take(law);
             peaks.take(shown);
         }
-        let axes = engine.axes();
+        self.ticks += 1;
+    }
+
+    /// The drives' maxima (with `--servo`: the engine keeps their outputs once per step).
+    fn take_drives(&mut self, outputs: &Outputs) {
+        let axes = &outputs.axes;
         self.following_error.take(axes.map(|s| s.following_error));
         self.torque.take(axes.map(|s| s.motor_torque));
-        self.contour = self.contour.max(engine.contour_error());
-        self.ticks += 1;
+        self.contour = self.contour.max(outputs.contour_error);
     }
 }
 
@@ -195,13 +200,20 @@ fn run_inner(args: &RunArgs) -> Result<(), String> {
     let mut max = Maxima::default();
     let mut emitted = Differences::new(engine.tick().p, machine.interpolation_period);
     while !engine.finished() && engine.time() < args.max_time {
-        let tick = *engine.step().map_err(|e| e.to_string())?;
+        engine.step().map_err(|e| e.to_string())?;
         engine
             .check_outputs()
             .map_err(|m| format!("{}: {m}", args.program))?;
-        max.take(&tick, emitted.push(tick.p), &engine);
+        // Read in place (a tick is 168 bytes); the drives' outputs only when simulated.
+        let tick = engine.tick();
+        max.take(tick, emitted.push(tick.p));
+        let outputs = args.servo.then(|| engine.outputs());
+        if let Some(outputs) = &outputs {
+            max.take_drives(outputs);
+        }
         if let Some((path, w)) = csv.as_mut() {
-            let row = CsvRow::new(&tick, &engine.axes());
+            let axes = outputs.map_or_else(|| engine.axes(), |o| o.axes);
+            let row = CsvRow::new(tick, &axes);
             w.serialize(row).map_err(|e| format!("{path}: {e}"))?;
         }
         if let Some(bar) = bar.as_ref().filter(|_| max.ticks % 1000 == 0) {
