@@ -2,8 +2,8 @@
 //! that do not meet with equal first and second derivatives — a quintic Hermite (hermite.rs;
 //! eq. 45–52 between two lines) from a cut d on each side, d from eq. 52's apex at the tolerance,
 //! shrunk until the transition keeps the tolerance, then halved while that costs less time at the
-//! corner (`local_cost`), or None (a stop at the corner) where a stop costs less. The tolerance
-//! only admits cuts; the time picks among them, so a larger tolerance does not pick a slower one.
+//! corner (`local_cost`), or None (a stop at the corner). The tolerance only admits cuts; the time
+//! picks among them, so a larger tolerance does not pick a slower one.
 
 use super::chain::{piece_limits, Curve, CurveLimits};
 use super::corner::REVERSAL_COS;
@@ -126,10 +126,7 @@ pub(super) fn transition(
             }
         }
     }
-    // A stop at the corner is a candidate at every tolerance: the transition must cost less.
-    let stop = local_cost(0.0, 0.0, 0.0, &sides);
-    best.filter(|b| b.0 < stop - SAVING)
-        .map(|(_, d, h, limits)| (d, d, h, limits))
+    best.map(|(_, d, h, limits)| (d, d, h, limits))
 }
 
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
@@ -137,6 +134,7 @@ pub(super) fn transition(
 const SAVING: f64 = 1e-6;
 /// Step between the cuts compared once one keeps the tolerance.
 const COMPARE_SHRINK: f64 = 0.5;
+
 /// A neighbour's own speed (its class: `piece_limits` on curves, the feed and eq. 11 on lines),
 /// the limits and bands it ramps within, and its length.
 struct Side {
@@ -148,6 +146,7 @@ struct Side {
     feed: f64,
 }
 
+/// The side of a junction that `span` is (its limits computed once, kept on the span).
 fn side(span: &mut Span, feed: f64, m: &Machine) -> Side {
     let piece = span.piece;
     let sigma = piece.curve.speed_bound().max(1.0);
@@ -189,17 +188,12 @@ fn joined_sides(sides: &mut [Side; 2]) {
     }
 }
 
-/// Time a transition of cut `d` (on both sides) and `length` at speed `v` (0, 0, 0: a stop)
-/// adds to the corner: its own run, less the stretches of the neighbours it replaces at their
-/// own speeds, plus what each neighbour loses to the ramp between `v` and its own speed (the
-/// fastest within its limits and bands, `scurve7_banded`, as far as its length reaches):
-/// T − D/v_side over the ramp.
+/// Time a transition of cut `d` (on both sides) and `length` at speed `v` adds to the corner: its
+/// own run, less the stretches of the neighbours it replaces at their own speeds, plus what each
+/// neighbour loses to the ramp between `v` and its own speed (the fastest within its limits and
+/// bands, `scurve7_banded`, as far as its length reaches): T − D/v_side over the ramp.
 fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
-    let mut cost = if length > 0.0 {
-        length / v.max(f64::MIN_POSITIVE)
-    } else {
-        0.0
-    };
+    let mut cost = length / v.max(f64::MIN_POSITIVE);
     for s in sides {
         let v_side = s.v.max(f64::MIN_POSITIVE);
         cost -= d / v_side;
