@@ -231,6 +231,12 @@ fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
     (t, s)
 }
 
+/// Time and distance of the fastest speed change v1 → v2 under the bands.
+pub fn ramp(b: &Banded, v1: f64, v2: f64) -> (f64, f64) {
+    let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
+    rise_time_distance(b, lo, hi)
+}
+
 /// Time of the fastest speed change v1 → v2 under the bands (with none, scurve7's).
 pub fn ramp_time(b: &Banded, v1: f64, v2: f64) -> f64 {
     let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));

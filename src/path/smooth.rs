@@ -110,6 +110,10 @@ pub(super) struct Span {
     pub(super) first: Move,
     pub(super) last: Move,
     pub(super) marks: Vec<(f64, u32)>,
+    /// The curve's own limits once computed (junction.rs needs them before stage 3 does; a
+    /// cache, recomputed after a restore).
+    #[serde(skip)]
+    pub(super) own: Option<CurveLimits>,
 }
 
 impl Span {
@@ -119,6 +123,7 @@ impl Span {
             first: mv,
             last: mv,
             marks: Vec::new(),
+            own: None,
         }
     }
 }
@@ -318,6 +323,7 @@ impl SmoothBuilder {
                 first,
                 last,
                 marks: source_map::span_marks(moves),
+                own: None,
             };
             self.junction(span, m, out);
         } else if moves.len() == 1 {
@@ -347,15 +353,16 @@ impl SmoothBuilder {
         let b = jet_at(&next.piece, 0.0);
         let joined = norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS;
         if joined {
-            self.piece(held.piece, &held.marks, held.last.feed, false, None, m, out);
+            self.piece(held.piece, &held.marks, held.last.feed, false, held.own, m, out);
             self.held = Some(next);
             return;
         }
-        match transition(&held, &next, m) {
+        match transition(&mut held, &mut next, m) {
             Some((d_held, d_next, h, limits)) => {
                 held.piece.u1 -= d_held;
                 next.piece.u0 += d_next;
-                self.piece(held.piece, &held.marks, held.last.feed, false, None, m, out);
+                let own = held.own.take();
+                self.piece(held.piece, &held.marks, held.last.feed, false, own, m, out);
                 let feed = held.last.feed.min(next.first.feed);
                 let symmetric = matches!(
                     (held.piece.curve, next.piece.curve),
@@ -368,7 +375,8 @@ impl SmoothBuilder {
                 self.held = Some(next);
             }
             None => {
-                self.piece(held.piece, &held.marks, held.last.feed, true, None, m, out);
+                let own = held.own.take();
+                self.piece(held.piece, &held.marks, held.last.feed, true, own, m, out);
                 self.held = Some(next);
             }
         }
@@ -376,7 +384,7 @@ impl SmoothBuilder {
 
     fn flush_held(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
         if let Some(held) = self.held.take() {
-            self.piece(held.piece, &held.marks, held.last.feed, true, None, m, out);
+            self.piece(held.piece, &held.marks, held.last.feed, true, held.own, m, out);
         }
         self.close_chain(0.0, m, out);
     }
@@ -521,7 +529,7 @@ pub(super) fn jet_at(piece: &Piece, u: f64) -> Jet {
 /// takes T(0, v_slow) + T(v_slow, v_peak) rather than T(0, v_peak). Joining pays when what the
 /// pieces lose to it, added up over the chain, stays within that. Decided on their times, the
 /// two ways cost about the same where the choice changes with a limit.
-fn joined_loss(
+pub(super) fn joined_loss(
     chain_loss: f64,
     (chain_length, chain_class): (f64, f64),
     (length, class): (f64, f64),
