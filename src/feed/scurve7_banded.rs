@@ -98,21 +98,20 @@ fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
         j: 0.0,
     }; MAX_BANDS + 1];
     let mut n = 0;
-    for k in 0..b.count() {
-        let lim = b.limits(k);
-        let (floor, top) = (b.floor_of(k).max(lo), b.top_of(k).min(hi));
-        if top > floor {
-            out[n] = Level {
-                floor,
-                top,
-                a: lim.a_max,
-                j: lim.j_max,
-            };
+    // Band k as `Banded::limits`, `floor_of` and `top_of` give it, read in one walk: the band
+    // levels, then the block's own limits above them (no top).
+    let bands = b.bands.levels().iter().map(|l| (l.v_top, l.a_max, l.j_max));
+    let mut floor_k: f64 = 0.0;
+    for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
+        let (floor, top) = (floor_k.max(lo), top_k.min(hi));
+        if top > floor && n < out.len() {
+            out[n] = Level { floor, top, a, j };
             n += 1;
         }
-        if b.top_of(k) >= hi {
+        if top_k >= hi {
             break;
         }
+        floor_k = top_k;
     }
     (out, n)
 }
