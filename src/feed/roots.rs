@@ -130,8 +130,20 @@ pub fn bisect(mut good: f64, mut bad: f64, ok: impl Fn(f64) -> bool) -> f64 {
 /// between (either way round): regula falsi with the Illinois halving, which converges
 /// superlinearly where bisection halves, bounded; the bracket ends where its ends are adjacent
 /// floats or `BISECTIONS` steps are spent.
-pub fn falsi(mut good: f64, mut bad: f64, g: impl Fn(f64) -> f64) -> f64 {
-    let (mut g_good, mut g_bad) = (g(good), g(bad));
+pub fn falsi(good: f64, bad: f64, g: impl Fn(f64) -> f64) -> f64 {
+    let (g_good, g_bad) = (g(good), g(bad));
+    falsi_from(good, g_good, bad, g_bad, g)
+}
+
+/// `falsi` with g already evaluated at both ends (`g_good` = g(good), `g_bad` = g(bad)), where
+/// the caller has them from bracketing: the same steps without solving them again.
+pub fn falsi_from(
+    mut good: f64,
+    mut g_good: f64,
+    mut bad: f64,
+    mut g_bad: f64,
+    g: impl Fn(f64) -> f64,
+) -> f64 {
     if !(g_good <= 0.0 && g_bad > 0.0) {
         return good;
     }

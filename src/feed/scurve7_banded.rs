@@ -20,7 +20,7 @@
 //! the ramp distance (increasing in the far speed), bounded.
 
 use super::bands::{Banded, MAX_BANDS};
-use super::roots::falsi;
+use super::roots::falsi_from;
 use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
 use super::{FeedLaw, Kin};
 use serde::{Deserialize, Serialize};
@@ -98,21 +98,20 @@ fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
         j: 0.0,
     }; MAX_BANDS + 1];
     let mut n = 0;
-    for k in 0..b.count() {
-        let lim = b.limits(k);
-        let (floor, top) = (b.floor_of(k).max(lo), b.top_of(k).min(hi));
-        if top > floor {
-            out[n] = Level {
-                floor,
-                top,
-                a: lim.a_max,
-                j: lim.j_max,
-            };
+    // Band k as `Banded::limits`, `floor_of` and `top_of` give it, read in one walk: the band
+    // levels, then the block's own limits above them (no top).
+    let bands = b.bands.levels().iter().map(|l| (l.v_top, l.a_max, l.j_max));
+    let mut floor_k: f64 = 0.0;
+    for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
+        let (floor, top) = (floor_k.max(lo), top_k.min(hi));
+        if top > floor && n < out.len() {
+            out[n] = Level { floor, top, a, j };
             n += 1;
         }
-        if b.top_of(k) >= hi {
+        if top_k >= hi {
             break;
         }
+        floor_k = top_k;
     }
     (out, n)
 }
@@ -224,9 +223,8 @@ fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
     let (mut t, mut s) = (0.0, 0.0);
     rise(b, lo, hi, |p| {
         let (tau, j) = phase_of(p);
-        let a0 = p.a2(p.v0).sqrt();
         t += tau;
-        s += tau * (p.v0 + tau * (0.5 * a0 + tau * j / 6.0));
+        s += distance_of(p, tau, j);
     });
     (t, s)
 }
@@ -235,6 +233,12 @@ fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
 pub fn ramp(b: &Banded, v1: f64, v2: f64) -> (f64, f64) {
     let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
     rise_time_distance(b, lo, hi)
+}
+
+/// Distance of piece `p` run as a phase of `tau` with jerk `j` (`phase_of`).
+fn distance_of(p: &Piece, tau: f64, j: f64) -> f64 {
+    let a0 = p.a2(p.v0).sqrt();
+    tau * (p.v0 + tau * (0.5 * a0 + tau * j / 6.0))
 }
 
 /// Time of the fastest speed change v1 → v2 under the bands (with none, scurve7's).
@@ -259,21 +263,24 @@ pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
         let d = ramp_distance(b, v0, v);
         (d <= length, d - length)
     };
+    // The bracket's ends with the distances already solved there, for the regula falsi.
     let top = b.top.v_max;
-    let mut good = v0;
+    let (mut good, mut g_good) = (v0, fits(v0).1);
     if top.is_finite() && top > v0 {
-        if !fits(top).0 {
-            return falsi(good, top, |v| fits(v).1);
+        let (fit, g_top) = fits(top);
+        if !fit {
+            return falsi_from(good, g_good, top, g_top, |v| fits(v).1);
         }
-        good = top;
+        (good, g_good) = (top, g_top);
     }
     let mut step = good.max(BRACKET_START);
     for _ in 0..BRACKET_DOUBLINGS {
         let hi = good + step;
-        if !fits(hi).0 {
-            return falsi(good, hi, |v| fits(v).1);
+        let (fit, g_hi) = fits(hi);
+        if !fit {
+            return falsi_from(good, g_good, hi, g_hi, |v| fits(v).1);
         }
-        good = hi;
+        (good, g_good) = (hi, g_hi);
         step *= 2.0;
     }
     good
@@ -284,13 +291,15 @@ pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
 /// so below the target the exits that fit are [0, x1]: regula falsi for x1.
 pub fn lowest_exit(b: &Banded, length: f64, v_in: f64, target: f64) -> f64 {
     let d = |x: f64| ramp_distance(b, v_in, x);
-    if d(target) <= length {
+    let d_target = d(target);
+    if d_target <= length {
         return target;
     }
-    if d(0.0) > length {
+    let d_stop = d(0.0);
+    if d_stop > length {
         return 0.0;
     }
-    falsi(0.0, target, |x| d(x) - length)
+    falsi_from(0.0, d_stop - length, target, d_target - length, |x| d(x) - length)
 }
 
 /// One block's profile under bands: ramp, cruise, ramp.
@@ -331,24 +340,45 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
         v_feed = v_feed.min(b.top.v_max);
     }
     let d = |x: f64, y: f64| ramp_distance(b, x, y);
-    let (v_c, v_end) = if d(v_in, v_out) > length {
+    // Each ramp distance solved once: the regula falsi starts from the ones the tests here took.
+    let d_through = d(v_in, v_out);
+    let (v_c, v_end) = if d_through > length {
+        let drop = |x: f64| d(v_in, x) - length;
         if v_out > v_in {
             let v = max_speed(b, length, v_in).min(v_out);
             (v, v)
-        } else if d(v_in, 0.0) <= length {
-            // A stop fits: the largest exit below v_out whose drop fits.
-            (v_in, lowest_exit(b, length, v_in, v_out))
         } else {
-            // It does not: the smallest drop that fits, above v_out.
-            (v_in, falsi(v_in, v_out, |x| d(v_in, x) - length))
+            let d_stop = d(v_in, 0.0);
+            if d_stop <= length {
+                // A stop fits: the largest exit below v_out whose drop fits (`lowest_exit`).
+                (
+                    v_in,
+                    falsi_from(0.0, d_stop - length, v_out, d_through - length, drop),
+                )
+            } else {
+                // It does not: the smallest drop that fits, above v_out.
+                (
+                    v_in,
+                    falsi_from(v_in, drop(v_in), v_out, d_through - length, drop),
+                )
+            }
         }
     } else {
         let v_hi = v_in.max(v_out);
         let total = |v: f64| d(v_in, v) + d(v, v_out);
-        let v_c = if v_feed <= v_hi || total(v_feed) <= length {
+        let v_c = if v_feed <= v_hi {
             v_feed.max(v_hi)
         } else {
-            falsi(v_hi, v_feed, |v| total(v) - length)
+            let t_feed = total(v_feed);
+            if t_feed <= length {
+                v_feed.max(v_hi)
+            } else {
+                // At v_hi one of the two ramps is none: the total is the one ramp between.
+                let t_hi = d_through + 0.0;
+                falsi_from(v_hi, t_hi - length, v_feed, t_feed - length, |v| {
+                    total(v) - length
+                })
+            }
         };
         (v_c, v_out)
     };
@@ -356,13 +386,22 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
 }
 
 fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {
-    let mut up: Vec<(f64, f64)> = Vec::new();
-    rise(b, v_in, v_c, |p| up.push(phase_of(p)));
-    // The drop is the rise v_end → v_c played backwards: the same phases in reverse order.
-    let mut down: Vec<(f64, f64)> = Vec::new();
-    rise(b, v_end, v_c, |p| down.push(phase_of(p)));
+    // The drop is the rise v_end → v_c played backwards: the same phases in reverse order. Each
+    // ramp's distance is summed on the way, as `rise_time_distance` sums it (no pieces when the
+    // ramp is none: its distance is 0 either way).
+    let ramp = |from: f64| {
+        let (mut phases, mut s) = (Vec::new(), 0.0);
+        rise(b, from, v_c, |p| {
+            let (tau, j) = phase_of(p);
+            phases.push((tau, j));
+            s += distance_of(p, tau, j);
+        });
+        (phases, s)
+    };
+    let (up, s_up) = ramp(v_in);
+    let (mut down, s_down) = ramp(v_end);
     down.reverse();
-    let ramps = rise_time_distance(b, v_in.min(v_c), v_c).1 + rise_time_distance(b, v_end.min(v_c), v_c).1;
+    let ramps = s_up + s_down;
     let cruise = if v_c > 0.0 {
         ((length - ramps) / v_c).max(0.0)
     } else {

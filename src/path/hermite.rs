@@ -19,13 +19,34 @@ const BOUND_PIECES: usize = 8;
 const SPEED_PIECES: usize = 8;
 
 /// p(u) = start + Σ_{k=1..5} c_k·u^k for u ∈ [0, lambda]; p(lambda) is `end` exactly.
+/// Restored from its coefficients (`Coefficients`); the speed bound is derived again then.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(from = "Coefficients")]
 pub struct Hermite {
     pub start: Vec3,
     pub end: Vec3,
     pub lambda: f64,
     /// Power coefficients in u, c[0] for u¹ … c[4] for u⁵.
     c: [Vec3; 5],
+    /// `speed_bound`, computed once: the transition search, the deviation check, the source
+    /// map and the planner each ask for it.
+    #[serde(skip_serializing)]
+    speed: f64,
+}
+
+/// A curve as it is saved: the fields of `Hermite` without the derived speed bound.
+#[derive(Deserialize)]
+struct Coefficients {
+    start: Vec3,
+    end: Vec3,
+    lambda: f64,
+    c: [Vec3; 5],
+}
+
+impl From<Coefficients> for Hermite {
+    fn from(k: Coefficients) -> Hermite {
+        Hermite::with_coefficients(k.start, k.end, k.lambda, k.c)
+    }
 }
 
 /// End data of a curve piece: point, first and second derivative w.r.t. its parameter.
@@ -61,12 +82,19 @@ impl Hermite {
             lk *= l;
             c[k] = scale(tau[k], 1.0 / lk);
         }
-        Hermite {
-            start: a.p,
-            end: b.p,
+        Hermite::with_coefficients(a.p, b.p, lambda, c)
+    }
+
+    fn with_coefficients(start: Vec3, end: Vec3, lambda: f64, c: [Vec3; 5]) -> Hermite {
+        let mut h = Hermite {
+            start,
+            end,
             lambda,
             c,
-        }
+            speed: 0.0,
+        };
+        h.speed = h.speed_bound_of_coefficients();
+        h
     }
 
     pub fn length(&self) -> f64 {
@@ -189,6 +217,10 @@ impl Hermite {
     /// first-order term is 2·p'·p'', nearly zero where the speed is nearly 1 (p'' is then nearly
     /// normal to p'), so the bound is tight where the vector bound is not.
     pub fn speed_bound(&self) -> f64 {
+        self.speed
+    }
+
+    fn speed_bound_of_coefficients(&self) -> f64 {
         // p'(u) = Σ_k a_k·u^k, k = 0…4, and |p'|² = Σ_n q_n·u^n, n = 0…8.
         let a: [Vec3; 5] = std::array::from_fn(|k| scale(self.c[k], (k + 1) as f64));
         let mut q = [0.0f64; 9];
@@ -331,6 +363,36 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Saved without its speed bound (the state format is the coefficients), restored with the
+    /// same bound bit for bit: the restored curve equals the saved one.
+    #[test]
+    fn restored_curve_has_its_speed_bound() {
+        let h = Hermite::new(
+            Jet {
+                p: [0.0; 3],
+                d1: [1.0, 0.0, 0.0],
+                d2: [0.0, 30.0, 0.0],
+            },
+            Jet {
+                p: [1e-3, 1e-3, 0.0],
+                d1: [0.0, 1.0, 0.0],
+                d2: [-20.0, 0.0, 0.0],
+            },
+            1.6e-3,
+        );
+        let json = serde_json::to_string(&h).expect("a curve serializes");
+        assert!(!json.contains("speed"), "{json}");
+        let back: Hermite = serde_json::from_str(&json).expect("and reads back");
+        assert_eq!(back, h);
+        assert_eq!(
+            back.speed_bound().to_bits(),
+            h.speed_bound_of_coefficients().to_bits()
+        );
+        assert!(h.speed_bound() > 1.0);
+        let bytes = postcard::to_stdvec(&h).expect("postcard too");
+        assert_eq!(postcard::from_bytes::<Hermite>(&bytes).expect("reads back"), h);
     }
 
     /// The speed bound is never below the sampled |p'| and close above it: on a corner of 90°
