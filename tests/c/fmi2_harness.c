@@ -167,8 +167,10 @@ int main(int argc, char **argv) {
             if (*arg == ' ') arg++;
             char *w = arg;
             for (char *r = arg; *r; r++) {
-                if (r[0] == '\\' && r[1] == 'n') {
-                    *w++ = '\n';
+                /* The script writes a backslash as two and a newline as backslash-n, so
+                   that a Windows path such as Z:\tmp\nc survives. */
+                if (r[0] == '\\' && (r[1] == 'n' || r[1] == '\\')) {
+                    *w++ = r[1] == 'n' ? '\n' : '\\';
                     r++;
                 } else {
                     *w++ = *r;

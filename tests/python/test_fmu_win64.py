@@ -95,7 +95,7 @@ def _script(md: Any, commands: list[Command]) -> str:
             elif kind == "Boolean":
                 lines.append(f"boolean {vr(name)} {int(bool(value))}")
             else:
-                lines.append(f"string {vr(name)} " + str(value).replace("\n", "\\n"))
+                lines.append(f"string {vr(name)} " + str(value).replace("\\", "\\\\").replace("\n", "\\n"))
         elif op == "record":
             outs = [v for v in md.modelVariables if v.causality == "output"]
             kinds = {"Real": "r", "Integer": "i", "Boolean": "b"}
