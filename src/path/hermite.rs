@@ -365,11 +365,9 @@ mod tests {
         }
     }
 
-    /// Saved without its speed bound (the state format is the coefficients), restored with the
-    /// same bound bit for bit: the restored curve equals the saved one.
-    #[test]
-    fn restored_curve_has_its_speed_bound() {
-        let h = Hermite::new(
+    /// A transition through a corner of 90° with curvature at both ends.
+    fn corner_of_90_degrees() -> Hermite {
+        Hermite::new(
             Jet {
                 p: [0.0; 3],
                 d1: [1.0, 0.0, 0.0],
@@ -381,7 +379,14 @@ mod tests {
                 d2: [-20.0, 0.0, 0.0],
             },
             1.6e-3,
-        );
+        )
+    }
+
+    /// Saved without its speed bound (the state format is the coefficients), restored with the
+    /// same bound bit for bit: the restored curve equals the saved one.
+    #[test]
+    fn restored_curve_has_its_speed_bound() {
+        let h = corner_of_90_degrees();
         let json = serde_json::to_string(&h).expect("a curve serializes");
         assert!(!json.contains("speed"), "{json}");
         let back: Hermite = serde_json::from_str(&json).expect("and reads back");
@@ -400,19 +405,7 @@ mod tests {
     /// curvature term).
     #[test]
     fn speed_bound_holds_and_is_tight() {
-        let corner = Hermite::new(
-            Jet {
-                p: [0.0; 3],
-                d1: [1.0, 0.0, 0.0],
-                d2: [0.0, 30.0, 0.0],
-            },
-            Jet {
-                p: [1e-3, 1e-3, 0.0],
-                d1: [0.0, 1.0, 0.0],
-                d2: [-20.0, 0.0, 0.0],
-            },
-            1.6e-3,
-        );
+        let corner = corner_of_90_degrees();
         let gentle = Hermite::new(
             line_jet([0.0; 3], [1.0, 0.0, 0.0]),
             Jet {
