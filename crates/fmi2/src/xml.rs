@@ -85,13 +85,20 @@ pub fn text(w: W) -> String {
     text
 }
 
-/// The XML text; `start_values[i]` is the start of variable i (None for calculated outputs).
-pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> String {
-    let mut w = document();
-    let header: Vec<(&str, String)> = [
-        ("fmiVersion", "2.0".into()),
+/// The attributes of `fmiModelDescription` both FMI versions share, in their order: the version, the
+/// model name, the version's identity attribute (`guid` / `instantiationToken`), the model's metadata,
+/// the generating layer and the naming convention, then `extra`; empty values left out.
+pub fn header<'a>(
+    fmi_version: &str,
+    info: &ModelInfo,
+    identity: (&'a str, String),
+    layer: &str,
+    extra: &[(&'a str, String)],
+) -> Vec<(&'a str, String)> {
+    [
+        ("fmiVersion", fmi_version.into()),
         ("modelName", info.model_name.clone()),
-        ("guid", info.guid.clone()),
+        identity,
         ("description", info.description.clone()),
         ("version", info.version.clone()),
         ("author", info.author.clone()),
@@ -99,14 +106,26 @@ pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> St
         ("license", info.license.clone()),
         (
             "generationTool",
-            format!("fmi2 layer of cnc-motion {}", env!("CARGO_PKG_VERSION")),
+            format!("{layer} layer of cnc-motion {}", env!("CARGO_PKG_VERSION")),
         ),
         ("variableNamingConvention", "structured".into()),
-        ("numberOfEventIndicators", "0".into()),
     ]
     .into_iter()
+    .chain(extra.iter().cloned())
     .filter(|(_, v)| !v.is_empty())
-    .collect();
+    .collect()
+}
+
+/// The XML text; `start_values[i]` is the start of variable i (None for calculated outputs).
+pub fn model_description(info: &ModelInfo, start_values: &[Option<Value>]) -> String {
+    let mut w = document();
+    let header = header(
+        "2.0",
+        info,
+        ("guid", info.guid.clone()),
+        "fmi2",
+        &[("numberOfEventIndicators", "0".into())],
+    );
     start(&mut w, "fmiModelDescription", &header);
     let caps = &info.capabilities;
     let mut cs: Vec<(&str, String)> = vec![

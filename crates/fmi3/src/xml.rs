@@ -4,7 +4,9 @@
 
 use crate::view::{Kind, Var, View};
 use fmi2::instance::LOG_CATEGORIES;
-use fmi2::xml::{causality, document, empty, end, real, start, text, unit_definitions, variability, W};
+use fmi2::xml::{
+    causality, document, empty, end, header, real, start, text, unit_definitions, variability, W,
+};
 use fmi2::{Causality, ModelInfo, Value};
 
 fn value_text(v: &Value) -> String {
@@ -19,24 +21,13 @@ fn value_text(v: &Value) -> String {
 /// The XML text; `start_values[i]` is the start of table variable i (None for calculated ones).
 pub fn model_description(info: &ModelInfo, view: &View, start_values: &[Option<Value>]) -> String {
     let mut w = document();
-    let header: Vec<(&str, String)> = [
-        ("fmiVersion", "3.0".into()),
-        ("modelName", info.model_name.clone()),
+    let header = header(
+        "3.0",
+        info,
         ("instantiationToken", view.token.clone()),
-        ("description", info.description.clone()),
-        ("version", info.version.clone()),
-        ("author", info.author.clone()),
-        ("copyright", info.copyright.clone()),
-        ("license", info.license.clone()),
-        (
-            "generationTool",
-            format!("fmi3 layer of cnc-motion {}", env!("CARGO_PKG_VERSION")),
-        ),
-        ("variableNamingConvention", "structured".into()),
-    ]
-    .into_iter()
-    .filter(|(_, v)| !v.is_empty())
-    .collect();
+        "fmi3",
+        &[],
+    );
     start(&mut w, "fmiModelDescription", &header);
     co_simulation(&mut w, info);
     unit_definitions(&mut w, info);
