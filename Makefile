@@ -117,40 +117,56 @@ lint:
 clean:
 	rm -rf out target/fmu examples/cosim.ssp $(PKG_FMU) python/build
 
-# --- win64 in the same FMUs (issue 18): the two cdylibs cross-compiled for Windows with Debian's
-# mingw-w64 and tested under wine64 (tests/python/test_fmu_win64.py, harness in tests/c/).
+# --- win64 and aarch64-linux in the same FMUs (issue 18): the two cdylibs cross-compiled for
+# Windows with Debian's mingw-w64 and for aarch64 Linux with Debian's aarch64 gcc (the FMI 3.0
+# archives only: FMI 2.0 names no aarch64 platform), tested under wine64 and qemu-aarch64
+# (tests/python/test_fmu_platforms.py, harness in tests/c/).
 # Self-contained block: `fmu` and `system-deps` gain prerequisites here.
 WIN64_TARGET := x86_64-pc-windows-gnu
-WIN64_DIR    := $(or $(CARGO_TARGET_DIR),target)/$(WIN64_TARGET)/release
-WIN64_DLLS   := $(WIN64_DIR)/cnc_motion.dll $(WIN64_DIR)/machine_structure.dll
+ARM64_TARGET := aarch64-unknown-linux-gnu
+CROSS_TARGETS := $(WIN64_TARGET) $(ARM64_TARGET)
 # file:Debian package, installed with apt-get where the file is missing (Debian's wine64 puts its
-# loader in /usr/lib/wine, off the PATH).
-CROSS_DEBS   := /usr/bin/x86_64-w64-mingw32-gcc:gcc-mingw-w64-x86-64 /usr/lib/wine/wine64:wine64
+# loader in /usr/lib/wine, off the PATH; qemu-user runs the aarch64 harness, with the aarch64 C
+# library of libc6-dev-arm64-cross under /usr/aarch64-linux-gnu).
+CROSS_DEBS   := /usr/bin/x86_64-w64-mingw32-gcc:gcc-mingw-w64-x86-64 /usr/lib/wine/wine64:wine64 \
+                /usr/bin/aarch64-linux-gnu-gcc:gcc-aarch64-linux-gnu \
+                /usr/aarch64-linux-gnu/lib/libc.so:libc6-dev-arm64-cross /usr/bin/qemu-aarch64:qemu-user
 HARNESS_DIR  := target/harness
+export CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_LINKER ?= aarch64-linux-gnu-gcc
 
-.PHONY: win64 system-deps-cross harness
+.PHONY: cross win64 aarch64 system-deps-cross harness
 
-fmu: win64
+fmu: cross
 system-deps: system-deps-cross
 test-python: harness
+
+# Both cross targets in one cargo call (cargo shares the build plan and runs the jobs together).
+cross: system-deps-cross
+	$(CARGO) build --release --lib $(CROSS_TARGETS:%=--target %) -p cnc-motion -p machine-structure
 
 win64: system-deps-cross
 	$(CARGO) build --release --lib --target $(WIN64_TARGET) -p cnc-motion -p machine-structure
 
+aarch64: system-deps-cross
+	$(CARGO) build --release --lib --target $(ARM64_TARGET) -p cnc-motion -p machine-structure
+
 system-deps-cross:
-	@missing=; for pair in $(CROSS_DEBS); do file=$${pair%%:*}; \
-	  [ -x "$$file" ] || missing="$$missing $${pair#*:}"; done; \
+	@missing=; for pair in $(CROSS_DEBS); do file=$${pair%%:*}; pkg=$${pair#*:}; \
+	  [ -e "$$file" ] || case " $$missing " in *" $$pkg "*) ;; *) missing="$$missing $$pkg";; esac; done; \
 	if [ -n "$$missing" ]; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	    echo "installing$$missing"; apt-get update -qq && \
 	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \
-	  else echo "missing:$$missing: run 'sudo apt-get install$$missing' (win64 cross build and test)" >&2; exit 1; fi; \
+	  else echo "missing:$$missing: run 'sudo apt-get install$$missing' (cross builds and their tests)" >&2; exit 1; fi; \
 	fi
-	@rustup target list --installed | grep -qx '$(WIN64_TARGET)' || rustup target add $(WIN64_TARGET)
+	@for t in $(CROSS_TARGETS); do \
+	  rustup target list --installed | grep -qx "$$t" || rustup target add "$$t"; done
 
-# The C importer of tests/c for Linux (dlopen) and Windows (LoadLibrary, run under wine), and the
-# bcryptprimitives.dll that wine 8 lacks (ProcessPrng, imported by Rust's std), beside the .exe.
-harness: $(HARNESS_DIR)/fmi2_harness $(HARNESS_DIR)/win64/fmi2_harness.exe $(HARNESS_DIR)/win64/bcryptprimitives.dll
+# The C importer of tests/c for Linux (dlopen), Windows (LoadLibrary, run under wine) and aarch64
+# Linux (dlopen, run under qemu-aarch64), and the bcryptprimitives.dll that wine 8 lacks
+# (ProcessPrng, imported by Rust's std), beside the .exe.
+harness: $(HARNESS_DIR)/fmi2_harness $(HARNESS_DIR)/win64/fmi2_harness.exe $(HARNESS_DIR)/win64/bcryptprimitives.dll \
+         $(HARNESS_DIR)/aarch64/fmi2_harness
 
 $(HARNESS_DIR)/fmi2_harness: tests/c/fmi2_harness.c
 	@mkdir -p $(@D)
@@ -163,3 +179,7 @@ $(HARNESS_DIR)/win64/fmi2_harness.exe: tests/c/fmi2_harness.c | system-deps-cros
 $(HARNESS_DIR)/win64/bcryptprimitives.dll: tests/c/bcryptprimitives.c | system-deps-cross
 	@mkdir -p $(@D)
 	x86_64-w64-mingw32-gcc -O2 -Wall -shared -o $@ $< -ladvapi32
+
+$(HARNESS_DIR)/aarch64/fmi2_harness: tests/c/fmi2_harness.c | system-deps-cross
+	@mkdir -p $(@D)
+	aarch64-linux-gnu-gcc -O2 -Wall -Wextra -o $@ $< -ldl

@@ -40,7 +40,7 @@ pub fn documentation() -> String {
          makes fmi2ExitInitializationMode return fmi2Error with <code>file:line:col: message</code> in the \
          log. <code>machineFile</code> reads the machine file of the command line (tools, work offsets, \
          homes, switches, units, axes, drives); parameters set to other values than their start values \
-         override its keys. Binaries: linux64 and win64 (Windows 10 or later). The reference result \
+         override its keys. Binaries: linux64 and win64 (Windows 10 or later); the FMI 3.0 archive also aarch64-linux. The reference result \
          of the default experiment is in <code>extra/org.fmi-standard.fmi-ls-ref/</code>; the Rust \
          sources of the binaries, with how to build them, in <code>sources/</code>.</p>\
          <h2>Example (fmpy)</h2><pre>from fmpy import simulate_fmu\n\

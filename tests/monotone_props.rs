@@ -17,7 +17,7 @@
 //! 4° apart on axes of jerk 1000 mm/s³: 0.203 s at P 1 µm, 0.259 s at 3 µm; choosing the stop by
 //! the same cost takes the rate to 8.9 %, but turns seed 003's pocket's corners into stops, where
 //! the servo model's outputs then differ between win64 and linux64 by more than
-//! tests/python/test_fmu_win64.py allows); a larger tolerance fits a curved span over short moves
+//! tests/python/test_fmu_platforms.py allows); a larger tolerance fits a curved span over short moves
 //! that a smaller one leaves straight (slower on low-jerk axes: the curve's acceleration and jerk
 //! at its top speed); and a longer transition changes which pieces join a chain and the chain's
 //! limits at its speed (the worst of its pieces').

@@ -41,6 +41,10 @@ def test_the_fmi3_archive_ships_the_fmi2_binaries(fmus: tuple[pathlib.Path, path
             ext = "so" if old == "linux64" else "dll"
             assert z2.read(f"binaries/{old}/{ident}.{ext}") == z3.read(f"binaries/{new}/{ident}.{ext}")
         assert "terminalsAndIcons/terminalsAndIcons.xml" in z3.namelist()
+        # aarch64-linux in the FMI 3 archive only (FMI 2.0 names no such platform): an ELF for ARM64.
+        arm = z3.read(f"binaries/aarch64-linux/{ident}.so")
+        assert arm[:4] == b"\x7fELF" and int.from_bytes(arm[18:20], "little") == 183  # EM_AARCH64
+        assert not any("aarch64" in n for n in z2.namelist())
 
 
 def test_arrays_types_and_capabilities(fmus: tuple[pathlib.Path, pathlib.Path]) -> None:

@@ -1,6 +1,6 @@
 //! Writing a .fmu (FMI 2.0 or 3.0): modelDescription.xml, binaries/<platform>/<id>.<so|dll>
-//! (linux64 and win64; FMI 3: x86_64-linux and x86_64-windows, the same libraries, which export
-//! both versions' functions), resources/, documentation/, extra/ (the reference result),
+//! (linux64 and win64; FMI 3: x86_64-linux, x86_64-windows and aarch64-linux, the same libraries,
+//! which export both versions' functions), resources/, documentation/, extra/ (the reference result),
 //! terminalsAndIcons/ (FMI 3), sources/. The archive is
 //! reproducible: entries in a fixed order, each with the same fixed timestamp (1980-01-01, the zip
 //! epoch) and permissions, so the same inputs give the same bytes.
@@ -12,21 +12,27 @@ use zip::write::SimpleFileOptions;
 /// A file inside the archive: path and bytes.
 pub type Entry = (String, Vec<u8>);
 
-/// A platform the FMU ships a binary for: FMI 2.0 name, FMI 3.0 name, Rust target (None: the
-/// host build), shared-library file name from the crate's library name.
+/// A platform the FMU ships a binary for: FMI 2.0 name (None: FMI 2.0 names no such platform, the
+/// binary goes into the FMI 3.0 archive only), FMI 3.0 name, Rust target (None: the host build),
+/// shared-library file name from the crate's library name.
 #[derive(Debug)]
 pub struct Platform {
+    /// The name in `--platforms` lists: the FMI 2.0 name where there is one, else the FMI 3.0 one.
     pub name: &'static str,
+    pub fmi2_name: Option<&'static str>,
     pub fmi3_name: &'static str,
     pub target: Option<&'static str>,
     pub library: fn(&str) -> String,
     pub extension: &'static str,
 }
 
-/// linux64 (the host build) and win64 (cross-compiled with mingw-w64).
-pub const PLATFORMS: [Platform; 2] = [
+/// linux64 (the host build), win64 (cross-compiled with mingw-w64) and aarch64-linux (cross-compiled
+/// with Debian's aarch64 gcc; FMI 2.0 has no name for it: an FMI 2 importer on aarch64 looks into
+/// `linux64`, which holds the x86_64 library, so it ships in the FMI 3.0 archive only).
+pub const PLATFORMS: [Platform; 3] = [
     Platform {
         name: "linux64",
+        fmi2_name: Some("linux64"),
         fmi3_name: "x86_64-linux",
         target: None,
         library: |lib| format!("lib{lib}.so"),
@@ -34,18 +40,30 @@ pub const PLATFORMS: [Platform; 2] = [
     },
     Platform {
         name: "win64",
+        fmi2_name: Some("win64"),
         fmi3_name: "x86_64-windows",
         target: Some("x86_64-pc-windows-gnu"),
         library: |lib| format!("{lib}.dll"),
         extension: "dll",
     },
+    Platform {
+        name: "aarch64-linux",
+        fmi2_name: None,
+        fmi3_name: "aarch64-linux",
+        target: Some("aarch64-unknown-linux-gnu"),
+        library: |lib| format!("lib{lib}.so"),
+        extension: "so",
+    },
 ];
+
+/// Every platform, as a `--platforms` list.
+pub const ALL_PLATFORMS: &str = "linux64,win64,aarch64-linux";
 
 /// The platforms named in a comma-separated list (`linux64,win64`), in [`PLATFORMS`] order.
 pub fn platforms(list: &str) -> Result<Vec<&'static Platform>, String> {
     let names: Vec<&str> = list.split(',').map(str::trim).filter(|n| !n.is_empty()).collect();
     if let Some(bad) = names.iter().find(|n| PLATFORMS.iter().all(|p| p.name != **n)) {
-        return Err(format!("unknown platform '{bad}' (known: linux64, win64)"));
+        return Err(format!("unknown platform '{bad}' (known: {ALL_PLATFORMS})"));
     }
     Ok(PLATFORMS.iter().filter(|p| names.contains(&p.name)).collect())
 }
@@ -72,7 +90,7 @@ pub fn built_libraries(
             } else {
                 let how = match p.target {
                     None => "cargo build --release --lib".to_string(),
-                    Some(t) => format!("make win64, or cargo build --release --lib --target {t}"),
+                    Some(t) => format!("make cross, or cargo build --release --lib --target {t}"),
                 };
                 Err(format!(
                     "{}: {} not found (build it: {how})",
@@ -105,12 +123,14 @@ pub struct FmuFiles<'a> {
 pub fn write_fmu(path: &Path, files: &FmuFiles) -> Result<(), String> {
     let mut libs = Vec::new();
     for (platform, lib) in &files.binaries {
-        let bytes = std::fs::read(lib).map_err(|e| format!("{}: {e}", lib.display()))?;
         let folder = if files.fmi_version >= 3 {
             platform.fmi3_name
+        } else if let Some(name) = platform.fmi2_name {
+            name
         } else {
-            platform.name
+            continue;
         };
+        let bytes = std::fs::read(lib).map_err(|e| format!("{}: {e}", lib.display()))?;
         let name = format!(
             "binaries/{folder}/{}.{}",
             files.model_identifier, platform.extension
@@ -214,7 +234,7 @@ pub fn sources_readme(model_identifier: &str, package: &str, lib_name: &str, rus
          generic FMI 2.0 layer `fmi2`), with the Cargo.lock the shipped binaries were built with. They \
          are not C sources: modelDescription.xml declares no SourceFiles, and an importer cannot \
          compile them. They are here to rebuild the binary, or build one for a platform the FMU \
-         does not ship (it ships linux64 and win64).\n\n\
+         does not ship (it ships linux64 and win64; the FMI 3.0 archive also aarch64-linux).\n\n\
          Needs Rust {rust_version} or newer (`rust-version` in Cargo.toml; install with rustup) and \
          access to crates.io.\n\n\
          linux64, on Linux x86_64:\n\n\
@@ -225,6 +245,12 @@ pub fn sources_readme(model_identifier: &str, package: &str, lib_name: &str, rus
          ```sh\nrustup target add x86_64-pc-windows-gnu\n\
          cargo build --release --lib -p {package} --target x86_64-pc-windows-gnu\n\
          cp target/x86_64-pc-windows-gnu/release/{lib_name}.dll ../binaries/win64/{id}.dll\n```\n\n\
+         aarch64-linux (FMI 3.0 archive), cross-compiled on Linux (Debian: `apt-get install \
+         gcc-aarch64-linux-gnu`), or natively with the linux64 command:\n\n\
+         ```sh\nrustup target add aarch64-unknown-linux-gnu\n\
+         CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_LINKER=aarch64-linux-gnu-gcc \\\n  \
+         cargo build --release --lib -p {package} --target aarch64-unknown-linux-gnu\n\
+         cp target/aarch64-unknown-linux-gnu/release/lib{lib_name}.so ../binaries/aarch64-linux/{id}.so\n```\n\n\
          Other platforms: the same with their target (`rustup target list`), the library copied to \
          `binaries/<platform>/{id}.<so|dylib|dll>` (darwin64: `lib{lib_name}.dylib` → `{id}.dylib`).\n"
     );
@@ -249,7 +275,11 @@ mod tests {
                 fmi_version: 2,
                 model_identifier: "M",
                 model_description: "<fmiModelDescription/>",
-                binaries: vec![(&PLATFORMS[0], lib.clone()), (&PLATFORMS[1], dll.clone())],
+                binaries: vec![
+                    (&PLATFORMS[0], lib.clone()),
+                    (&PLATFORMS[1], dll.clone()),
+                    (&PLATFORMS[2], lib.clone()),
+                ],
                 resources: vec![("a.txt".into(), b"a".to_vec())],
                 documentation_html: "<html/>",
                 extra: vec![("ls/manifest.xml".into(), b"<m/>".to_vec())],
@@ -270,6 +300,7 @@ mod tests {
         let at = |name: &str| text.find(name).unwrap_or_else(|| panic!("{name}"));
         assert!(at("binaries/linux64/M.so") < at("binaries/win64/M.dll"));
         assert!(at("binaries/win64/M.dll") < at("documentation/index.html"));
+        assert!(!text.contains("aarch64"), "FMI 2.0 names no aarch64 platform");
         assert!(at("extra/ls/manifest.xml") < at("resources/a.txt"));
         std::fs::remove_dir_all(dir).unwrap();
     }
@@ -283,6 +314,10 @@ mod tests {
         );
         assert_eq!(platforms("win64").unwrap()[0].extension, "dll");
         assert!(platforms("linux64,win32").unwrap_err().contains("win32"));
+        let all = platforms(ALL_PLATFORMS).unwrap();
+        assert_eq!(all.len(), PLATFORMS.len());
+        let arm = all[2];
+        assert_eq!((arm.fmi2_name, arm.fmi3_name), (None, "aarch64-linux"));
         let e = built_libraries(Path::new("/nonexistent/target/release"), "m", &both).unwrap_err();
         assert!(
             e.starts_with("linux64: /nonexistent/target/release/libm.so not found"),

@@ -366,7 +366,7 @@ pub fn write_fmu(
          CncMotion <code>x.loadForce</code> for two-way coupling). Only <code>x.acceleration</code> \
          depends directly on an input (<code>x.driveForce</code>). Defaults: a small mill (45/120 Hz \
          in x). The flexible variant (first mode 12 Hz) is in examples/flexible_structure.json. \
-         Binaries: linux64 and win64; reference result of the default experiment (no input: at rest) \
+         Binaries: linux64 and win64 (FMI 3.0: also aarch64-linux); reference result of the default experiment (no input: at rest) \
          in <code>extra/org.fmi-standard.fmi-ls-ref/</code>; Rust sources in <code>sources/</code>.</p>",
     );
     let files = fmi2::package::FmuFiles {

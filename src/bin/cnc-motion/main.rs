@@ -63,8 +63,9 @@ enum Command {
     Package {
         #[arg(long, default_value = "target/fmu/CncMotion.fmu")]
         output: String,
-        /// Platforms whose binaries go in (built beforehand: `make win64` for win64).
-        #[arg(long, default_value = "linux64,win64")]
+        /// Platforms whose binaries go in (built beforehand: `make cross` for win64 and
+        /// aarch64-linux; aarch64-linux goes into the FMI 3.0 archive only).
+        #[arg(long, default_value = fmi2::package::ALL_PLATFORMS)]
         platforms: String,
     },
 }

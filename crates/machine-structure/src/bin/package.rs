@@ -1,6 +1,6 @@
-//! `package-machine-structure [OUTPUT] [--platforms linux64,win64]`: writes
+//! `package-machine-structure [OUTPUT] [--platforms linux64,win64,aarch64-linux]`: writes
 //! target/fmu/MachineStructure.fmu (or OUTPUT) from the shared libraries built beside this
-//! executable (linux64) and in target/x86_64-pc-windows-gnu/release (win64, `make win64`).
+//! executable (linux64) and in target/<triple>/release (win64 and aarch64-linux, `make cross`).
 
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 fn main() -> std::process::ExitCode {
     let mut out = "target/fmu/MachineStructure.fmu".to_string();
-    let mut platforms = "linux64,win64".to_string();
+    let mut platforms = fmi2::package::ALL_PLATFORMS.to_string();
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {

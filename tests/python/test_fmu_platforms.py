@@ -1,15 +1,18 @@
-"""The win64 binaries of both FMUs, run for real: Debian's wine64 runs a plain C importer
-(tests/c/fmi2_harness.c, built with mingw-w64: LoadLibrary/GetProcAddress, a variadic logger) on the
-DLLs from the archives, and the same C source built for Linux (dlopen) runs the linux64 libraries
-with the same scripts. Both write every call's status, every log message and every recorded output
-as IEEE-754 bits; the two files must agree:
+"""Every platform's binaries of both FMUs, run for real beside linux64: Debian's wine64 runs a plain C
+importer (tests/c/fmi2_harness.c, built with mingw-w64: LoadLibrary/GetProcAddress, a variadic
+logger) on the win64 DLLs of the FMI 2 archives; qemu-aarch64 runs the same C source built with
+Debian's aarch64 gcc (dlopen) on the aarch64-linux libraries of the FMI 3 archives (FMI 2.0 names no
+aarch64 platform; the library exports the fmi2 functions too, which the harness drives); and the
+same source built for the host runs the linux64 libraries with the same scripts. Each writes every
+call's status, every log message and every recorded output as IEEE-754 bits; each platform's file
+must agree with linux64's:
 
 - statuses, log messages, step counts, Integers and Booleans: identical;
 - Reals: within 1e-12 of each variable's largest magnitude in the run. They are not all bit-identical:
   the planner's and the drives' sin, cos, atan2, tanh, … come from each platform's C library
-  (glibc on Linux, msvcrt/mingw-w64 on Windows), which round differently in the last bit; the drives
-  carry such a difference into their outputs. The largest relative differences seen are printed
-  (about 1e-15 of a column's range; command positions differ by at most an ulp).
+  (glibc on Linux x86_64 and aarch64, msvcrt/mingw-w64 on Windows), which round differently in the
+  last bit; the drives carry such a difference into their outputs. The largest relative differences
+  seen are printed (about 1e-15 of a column's range; command positions differ by at most an ulp).
 
 The wine prefix lives in target/wine (created once, ~15-60 s, with Mono/Gecko off).
 """
@@ -17,13 +20,14 @@ import os
 import shutil
 import struct
 import subprocess
+import zipfile
 from pathlib import Path
 from typing import Any, Callable
 
 import pytest
 
 from cnc_motion_sim import Unpacked
-from repo import CORPUS, ROOT
+from repo import CORPUS, FMU_DIR, ROOT
 
 # One scripted call: an operation and its arguments (see _script).
 Command = tuple[Any, ...]
@@ -31,6 +35,8 @@ Command = tuple[Any, ...]
 HARNESS = ROOT / "target" / "harness"
 PREFIX = ROOT / "target" / "wine"
 BOUND = 1e-12
+# The C library of Debian's aarch64 cross toolchain (libc6-arm64-cross), for qemu-aarch64 -L.
+ARM64_SYSROOT = Path("/usr/aarch64-linux-gnu")
 
 
 def _bits(x: float) -> str:
@@ -66,6 +72,30 @@ def wine() -> str:
     if server.exists():  # wait until wineboot's services have settled
         subprocess.run([str(server), "-w"], env=_env(), timeout=120)
     return wine
+
+
+@pytest.fixture(scope="session")
+def qemu() -> str:
+    """qemu-aarch64 (Debian's qemu-user) and the aarch64 harness built (`make harness`)."""
+    subprocess.run(["make", "-s", "harness"], cwd=ROOT, check=True)
+    found = shutil.which("qemu-aarch64")
+    if found is None or not (ARM64_SYSROOT / "lib").is_dir():
+        pytest.fail("qemu-aarch64 or the aarch64 C library not found: run `make system-deps`")
+    return found
+
+
+@pytest.fixture(scope="session")
+def runners(wine: str, qemu: str) -> dict[str, str]:
+    """The emulator of each platform that needs one."""
+    return {"win64": wine, "aarch64-linux": qemu}
+
+
+def _arm64_library(model: str, tmp_path: Path) -> Path:
+    """The aarch64-linux library of `model`'s FMI 3 archive (the one that ships it)."""
+    member = f"binaries/aarch64-linux/{model}.so"
+    with zipfile.ZipFile(FMU_DIR / f"{model}-fmi3.fmu") as z:
+        z.extract(member, tmp_path / "fmi3")
+    return tmp_path / "fmi3" / member
 
 
 def _windows_path(p: Path) -> str:
@@ -109,29 +139,51 @@ def _script(md: Any, commands: list[Command]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _run(wine: str, unpacked: Unpacked, commands: Callable[[bool], list[Command]], tmp_path: Path,
-         name: str) -> tuple[list[str], list[str]]:
-    """The script through linux64 (native harness) and win64 (wine); both output files."""
+PLATFORMS = ("linux64", "win64", "aarch64-linux")
+
+
+def _run(runners: dict[str, str], unpacked: Unpacked, commands: Callable[[bool], list[Command]],
+         tmp_path: Path, name: str) -> dict[str, list[str]]:
+    """The script through linux64 (native harness), win64 (wine) and aarch64-linux (qemu); every
+    platform's output file, by platform."""
     md, model = unpacked.md, unpacked.md.coSimulation.modelIdentifier
     resources = Path(unpacked.dir) / "resources"
-    out: dict[bool, list[str]] = {}
-    for windows in (False, True):
-        script = tmp_path / f"{name}_{'win64' if windows else 'linux64'}.txt"
+    out: dict[str, list[str]] = {}
+    for platform in PLATFORMS:
+        windows = platform == "win64"
+        script = tmp_path / f"{name}_{platform}.txt"
         script.write_text(_script(md, commands(windows)))
-        result = tmp_path / f"{name}_{'win64' if windows else 'linux64'}.out"
+        result = tmp_path / f"{name}_{platform}.out"
+        env = None
         if windows:
             dll = Path(unpacked.dir) / "binaries" / "win64" / f"{model}.dll"
-            cmd = [wine, str(HARNESS / "win64" / "fmi2_harness.exe"), _windows_path(dll),
+            cmd = [runners[platform], str(HARNESS / "win64" / "fmi2_harness.exe"), _windows_path(dll),
                    _uri(resources, True), _windows_path(script), _windows_path(result)]
             env = _env()
+        elif platform == "aarch64-linux":
+            so = _arm64_library(model, tmp_path)
+            cmd = [runners[platform], "-L", str(ARM64_SYSROOT), str(HARNESS / "aarch64" / "fmi2_harness"),
+                   str(so), _uri(resources, False), str(script), str(result)]
         else:
             so = Path(unpacked.dir) / "binaries" / "linux64" / f"{model}.so"
             cmd = [str(HARNESS / "fmi2_harness"), str(so), _uri(resources, False), str(script), str(result)]
-            env = None
         res = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600)
         assert res.returncode == 0, f"{cmd}: {res.returncode}\n{res.stdout}\n{res.stderr}"
-        out[windows] = result.read_text().splitlines()
-    return out[False], out[True]
+        out[platform] = result.read_text().splitlines()
+    return out
+
+
+def _compare_all(runs: dict[str, list[str]]) -> tuple[int, dict[str, float]]:
+    """Every platform against linux64 (`_compare`): the step count and each one's largest
+    relative difference."""
+    steps, worst = 0, {}
+    for platform in PLATFORMS[1:]:
+        steps, worst[platform] = _compare(runs["linux64"], runs[platform])
+    return steps, worst
+
+
+def _worst(worst: dict[str, float]) -> str:
+    return ", ".join(f"{p} {w:.1e}" for p, w in worst.items())
 
 
 def _compare(linux: list[str], windows: list[str]) -> tuple[int, float]:
@@ -169,15 +221,15 @@ def _compare(linux: list[str], windows: list[str]) -> tuple[int, float]:
 POCKET = "seed003_pocket.txt"
 
 
-def test_cnc_motion_win64_equals_linux64(wine: str, cnc: Unpacked, tmp_path: Path) -> None:
+def test_cnc_motion_on_every_platform_equals_linux64(runners: dict[str, str], cnc: Unpacked,
+                                                    tmp_path: Path) -> None:
     h = 1e-3
     def default(windows: bool) -> list[Command]:
         return [("instantiate", "default"), ("init",), ("record",), ("until", "status.finished", 100000, h),
                 ("terminate",), ("free",)]
-    linux, windows = _run(wine, cnc, default, tmp_path, "default")
-    steps, worst = _compare(linux, windows)
+    steps, worst = _compare_all(_run(runners, cnc, default, tmp_path, "default"))
     assert steps > 5000, steps
-    print(f"\ndefault program, servo on: {steps} steps, largest relative difference {worst:.1e}")
+    print(f"\ndefault program, servo on: {steps} steps, largest relative difference {_worst(worst)}")
 
     machine = ROOT / "examples" / "machines" / "seed003_pocket.toml"
     program = CORPUS / POCKET
@@ -188,24 +240,24 @@ def test_cnc_motion_win64_equals_linux64(wine: str, cnc: Unpacked, tmp_path: Pat
                 ("set", "programFile", path), ("set", "feedOverride", 1.5), ("init",), ("record",),
                 ("until", "status.finished", 200000, h), ("terminate",), ("free",)]
 
-    linux, windows = _run(wine, cnc, pocket, tmp_path, "pocket")
-    steps, worst = _compare(linux, windows)
+    steps, worst = _compare_all(_run(runners, cnc, pocket, tmp_path, "pocket"))
     assert steps > 1000, steps
-    print(f"seed 003 pocket with its machine file: {steps} steps, largest relative difference {worst:.1e}")
+    print(f"seed 003 pocket with its machine file: {steps} steps, largest relative difference {_worst(worst)}")
 
     def relation(windows: bool) -> list[Command]:
         return [("instantiate", "relation"), ("set", "x.servo.ratedTorque", 3.0), ("init",), ("free",)]
-    linux, windows = _run(wine, cnc, relation, tmp_path, "relation")
-    _compare(linux, windows)
-    errors = [line for line in windows if line.startswith("log 3 ")]
-    assert any("x.servo.peakTorque" in e and "x.servo.ratedTorque" in e for e in errors), windows
+    runs = _run(runners, cnc, relation, tmp_path, "relation")
+    _compare_all(runs)
+    for platform in PLATFORMS[1:]:
+        errors = [line for line in runs[platform] if line.startswith("log 3 ")]
+        assert any("x.servo.peakTorque" in e and "x.servo.ratedTorque" in e for e in errors), runs[platform]
 
 
-def test_machine_structure_win64_equals_linux64(wine: str, structure: Unpacked, tmp_path: Path) -> None:
+def test_machine_structure_on_every_platform_equals_linux64(runners: dict[str, str], structure: Unpacked,
+                                                            tmp_path: Path) -> None:
     def commands(windows: bool) -> list[Command]:
         return [("instantiate", "frame"), ("set", "x.driveForce", 1000.0), ("set", "z.driveForce", -250.0),
                 ("init",), ("record",), ("steps", 2000, 1e-3), ("terminate",), ("free",)]
-    linux, windows = _run(wine, structure, commands, tmp_path, "structure")
-    steps, worst = _compare(linux, windows)
+    steps, worst = _compare_all(_run(runners, structure, commands, tmp_path, "structure"))
     assert steps == 2000
-    print(f"\nMachineStructure step response: {steps} steps, largest relative difference {worst:.1e}")
+    print(f"\nMachineStructure step response: {steps} steps, largest relative difference {_worst(worst)}")
