@@ -59,6 +59,7 @@ impl fmi2::Model for CncMotionFmu {
                     ..info.capabilities
                 },
                 terminals: model::terminals(),
+                clocks: vec![model::tick_clock()],
                 ..info
             }
         })
@@ -91,6 +92,10 @@ impl fmi2::Model for CncMotionFmu {
 
     fn do_step_early(&mut self, h: f64) -> Result<f64, String> {
         self.0.do_step_early(h)
+    }
+
+    fn check_clock(&self, _clock: usize, interval: f64) -> Result<(), String> {
+        self.0.check_tick(interval)
     }
 
     fn output_derivative(&self, index: usize, order: u32) -> Option<f64> {

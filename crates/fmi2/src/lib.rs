@@ -264,6 +264,20 @@ pub struct Terminal {
     pub members: Vec<(String, String)>,
 }
 
+/// A periodic time-based input clock (FMI 3 `Clock`, intervalVariability `constant`): each
+/// activation runs the clock's model partition up to the activation time
+/// ([`Model::activate`]). FMI 3 only: Scheduled Execution activates it with
+/// fmi3ActivateModelPartition, Co-Simulation in Event Mode with fmi3SetClock.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Clock {
+    pub name: String,
+    pub description: String,
+    /// The constant interval (s); activations at t_start + k·interval.
+    pub interval: f64,
+    /// Scheduling priority (0: highest).
+    pub priority: u32,
+}
+
 /// What the model tells the layer (and the XML) about itself.
 #[derive(Clone, Debug)]
 pub struct ModelInfo {
@@ -282,6 +296,9 @@ pub struct ModelInfo {
     pub default_experiment: (f64, f64, f64, f64),
     pub capabilities: Capabilities,
     pub terminals: Vec<Terminal>,
+    /// FMI 3 clocks (value references after the table's); none: no Event Mode or Scheduled
+    /// Execution.
+    pub clocks: Vec<Clock>,
 }
 
 impl ModelInfo {
@@ -308,6 +325,7 @@ impl ModelInfo {
             default_experiment: (0.0, 1.0, 1e-6, 1e-3),
             capabilities: Capabilities::default(),
             terminals: Vec::new(),
+            clocks: Vec::new(),
         }
     }
 
@@ -369,6 +387,19 @@ pub trait Model: Clone + Send + 'static {
     /// (FMI 2 fmi2SetRealInputDerivatives; models with `max_input_derivative_order` > 0).
     fn set_input_derivative(&mut self, _index: usize, _order: u32, _value: f64) -> Result<(), String> {
         Err("this model cannot interpolate inputs".into())
+    }
+
+    /// The model partition of clock `clock` ([`ModelInfo::clocks`]), activated `h` > 0 after the
+    /// model's current time: everything up to the activation time. One-partition models advance
+    /// as in a step.
+    fn activate(&mut self, _clock: usize, h: f64) -> Result<(), String> {
+        self.do_step(h)
+    }
+
+    /// After initialization, whether the parameters in force agree with clock `clock`'s declared
+    /// constant `interval` (a clocked instance refuses to start otherwise, with this message).
+    fn check_clock(&self, _clock: usize, _interval: f64) -> Result<(), String> {
+        Ok(())
     }
 
     /// ∂unknown/∂known at the current communication point: unknowns are outputs and state
