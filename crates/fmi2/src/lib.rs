@@ -313,7 +313,7 @@ impl ModelInfo {
         ModelInfo {
             model_name: name.into(),
             model_identifier: name.into(),
-            guid: guid_of(&variables),
+            guid: guid_of(&variables, &Capabilities::default()),
             description: description.into(),
             version: String::new(),
             author: String::new(),
@@ -326,6 +326,16 @@ impl ModelInfo {
             capabilities: Capabilities::default(),
             terminals: Vec::new(),
             clocks: Vec::new(),
+        }
+    }
+
+    /// The description with these capabilities, and a GUID that fingerprints them too (a model
+    /// that starts to take input derivatives is another FMU to its importers).
+    pub fn with_capabilities(self, capabilities: Capabilities) -> ModelInfo {
+        ModelInfo {
+            guid: guid_of(&self.variables, &capabilities),
+            capabilities,
+            ..self
         }
     }
 
@@ -444,8 +454,9 @@ macro_rules! crate_model_info {
 /// other v5 names).
 const GUID_NAMESPACE: uuid::Uuid = uuid::Uuid::from_u128(0x4c1f_5a1e_9b0d_4e57_a6c3_2f8e_1d7b_90a4);
 
-/// A GUID that changes whenever the variable table changes: the name-based UUID (v5) of its rows.
-pub fn guid_of(variables: &[VariableInfo]) -> String {
+/// A GUID that changes whenever the variable table or the capabilities change: the name-based
+/// UUID (v5) of the table's rows and the capabilities.
+pub fn guid_of(variables: &[VariableInfo], capabilities: &Capabilities) -> String {
     let rows: String = variables
         .iter()
         .map(|v| {
@@ -461,7 +472,8 @@ pub fn guid_of(variables: &[VariableInfo]) -> String {
                 v.derivative_of
             )
         })
-        .collect();
+        .collect::<String>()
+        + &format!("{capabilities:?}");
     format!("{{{}}}", uuid::Uuid::new_v5(&GUID_NAMESPACE, rows.as_bytes()))
 }
 
@@ -494,9 +506,19 @@ mod tests {
             let v = VariableInfo::new("x.p", Type::Real, Causality::Output, Variability::Continuous, "p");
             vec![v.unit(unit)]
         };
-        let g = guid_of(&row("m"));
-        assert_eq!(g, guid_of(&row("m")), "the same table, the same GUID");
-        assert_ne!(g, guid_of(&row("N")), "another unit, another GUID");
+        let none = Capabilities::default();
+        let g = guid_of(&row("m"), &none);
+        assert_eq!(g, guid_of(&row("m"), &none), "the same table, the same GUID");
+        assert_ne!(g, guid_of(&row("N"), &none), "another unit, another GUID");
+        let interpolating = Capabilities {
+            max_input_derivative_order: 1,
+            ..none
+        };
+        assert_ne!(
+            g,
+            guid_of(&row("m"), &interpolating),
+            "other capabilities, another GUID"
+        );
         let u = uuid::Uuid::parse_str(g.trim_matches(|c| c == '{' || c == '}')).unwrap();
         assert_eq!((g.len(), u.get_version_num()), (38, 5));
     }
