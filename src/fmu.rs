@@ -47,19 +47,20 @@ impl fmi2::Model for CncMotionFmu {
                 "CNC motion controller: G-code to jerk-limited axis motion through servo drives";
             let info =
                 fmi2::crate_model_info!(model::MODEL_NAME, description, fmi2::table::variables(table()));
+            let capabilities = fmi2::Capabilities {
+                max_output_derivative_order: model::MAX_OUTPUT_DERIVATIVE_ORDER,
+                // The interpolation period (of the default machine; machine.interpolationPeriod
+                // sets another).
+                fixed_internal_step: Some(Machine::default().interpolation_period),
+                might_return_early: true,
+                ..info.capabilities
+            };
             ModelInfo {
                 enumerations: model::enumerations(),
                 default_experiment: (0.0, default_stop_time(), 1e-6, 0.001),
-                capabilities: fmi2::Capabilities {
-                    max_output_derivative_order: model::MAX_OUTPUT_DERIVATIVE_ORDER,
-                    // The interpolation period (of the default machine; machine.interpolationPeriod
-                    // sets another).
-                    fixed_internal_step: Some(Machine::default().interpolation_period),
-                    might_return_early: true,
-                    ..info.capabilities
-                },
                 terminals: model::terminals(),
-                ..info
+                clocks: vec![model::tick_clock()],
+                ..info.with_capabilities(capabilities)
             }
         })
     }
@@ -91,6 +92,10 @@ impl fmi2::Model for CncMotionFmu {
 
     fn do_step_early(&mut self, h: f64) -> Result<f64, String> {
         self.0.do_step_early(h)
+    }
+
+    fn check_clock(&self, _clock: usize, interval: f64) -> Result<(), String> {
+        self.0.check_tick(interval)
     }
 
     fn output_derivative(&self, index: usize, order: u32) -> Option<f64> {

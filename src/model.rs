@@ -146,6 +146,18 @@ pub fn terminals() -> Vec<fmi2::Terminal> {
     }]
 }
 
+/// The FMI 3 clock `tick`: the interpolation period of the default machine, whose every
+/// activation computes the interpolator's ticks and the drives up to its time (Scheduled
+/// Execution; in Co-Simulation fmi3DoStep computes them).
+pub fn tick_clock() -> fmi2::Clock {
+    fmi2::Clock {
+        name: "tick".into(),
+        description: "interpolation tick (machine.interpolationPeriod of the default machine): an activation computes the interpolator and the drives up to its time".into(),
+        interval: Machine::default().interpolation_period,
+        priority: 0,
+    }
+}
+
 /// FMI type of a drive parameter, from its kind in the servo table.
 fn servo_type(kind: Kind) -> Type {
     match kind {
@@ -333,6 +345,19 @@ impl CncMotion {
             (Slot::FeedHold, Value::Boolean(b)) => self.feed_hold = b,
             (Slot::LoadForce, Value::Real(x)) => self.load_force[i] = ranges::check_load_force(x)?,
             _ => return Err("cannot be set".into()),
+        }
+        Ok(())
+    }
+
+    /// A clocked instance runs at the clock's interval: the machine in force (after the machine
+    /// file) must keep the default interpolation period.
+    pub fn check_tick(&self, interval: f64) -> Result<(), String> {
+        let period = self.machine.interpolation_period;
+        if period != interval {
+            return Err(format!(
+                "machine.interpolationPeriod is {period} s, the clock ticks every {interval} s: \
+                 with clocks (Scheduled Execution, Event Mode) keep the default period"
+            ));
         }
         Ok(())
     }

@@ -43,6 +43,8 @@ pub enum State {
     Terminated,
     Error,
     Fatal,
+    /// FMI 3 Co-Simulation Event Mode (instances made with eventModeUsed).
+    EventMode,
 }
 
 /// Log categories of every FMU built on this layer (declared in the XML).
@@ -101,6 +103,16 @@ pub struct Instance<M: Model> {
     pub token: &'static str,
     /// FMI 3: the importer allows fmi3DoStep to return early.
     pub early_return_allowed: bool,
+    /// FMI 3 Co-Simulation with Event Mode (eventModeUsed).
+    pub event_mode_used: bool,
+    /// FMI 3 Scheduled Execution: fmi3ActivateModelPartition advances the model (its Clock
+    /// Activation Mode is `State::StepComplete`).
+    pub scheduled: bool,
+    /// Start time of the experiment (clocks tick at start + k·interval).
+    pub start_time: f64,
+    /// Time of each clock's latest activation (a clock is activated at most once per time);
+    /// emptied by a reset or a restored FMU state.
+    pub activated_at: Vec<Option<f64>>,
     logger: Option<Logger>,
     env: *mut c_void,
     logging_on: bool,
@@ -133,6 +145,10 @@ impl<M: Model> Instance<M> {
             resources,
             token: &M::info().guid,
             early_return_allowed: false,
+            event_mode_used: false,
+            scheduled: false,
+            start_time: 0.0,
+            activated_at: Vec::new(),
             logger,
             env,
             logging_on,
@@ -284,6 +300,7 @@ impl<M: Model> Instance<M> {
         self.model = s.model.clone();
         self.time = s.time;
         self.state = s.state;
+        self.activated_at.clear();
     }
 
     /// Versioned, size-checked bytes: magic, GUID (or token), time, state, model bytes.
@@ -331,6 +348,8 @@ impl<M: Model> Instance<M> {
             3 => State::StepFailed,
             4 => State::Terminated,
             5 => State::Error,
+            7 if self.event_mode_used => State::EventMode,
+            7 => return Err("serialized FMU state was saved in Event Mode; this instance has none".into()),
             _ => return Err("serialized FMU state has an invalid slave state".into()),
         };
         let len = u64::from_le_bytes(take(8)?.try_into().map_err(|_| "bad length")?) as usize;

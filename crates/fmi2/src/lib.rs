@@ -264,6 +264,20 @@ pub struct Terminal {
     pub members: Vec<(String, String)>,
 }
 
+/// A periodic time-based input clock (FMI 3 `Clock`, intervalVariability `constant`): each
+/// activation runs the clock's model partition up to the activation time
+/// ([`Model::activate`]). FMI 3 only: Scheduled Execution activates it with
+/// fmi3ActivateModelPartition, Co-Simulation in Event Mode with fmi3SetClock.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Clock {
+    pub name: String,
+    pub description: String,
+    /// The constant interval (s); activations at t_start + k·interval.
+    pub interval: f64,
+    /// Scheduling priority (0: highest).
+    pub priority: u32,
+}
+
 /// What the model tells the layer (and the XML) about itself.
 #[derive(Clone, Debug)]
 pub struct ModelInfo {
@@ -282,6 +296,9 @@ pub struct ModelInfo {
     pub default_experiment: (f64, f64, f64, f64),
     pub capabilities: Capabilities,
     pub terminals: Vec<Terminal>,
+    /// FMI 3 clocks (value references after the table's); none: no Event Mode or Scheduled
+    /// Execution.
+    pub clocks: Vec<Clock>,
 }
 
 impl ModelInfo {
@@ -296,7 +313,7 @@ impl ModelInfo {
         ModelInfo {
             model_name: name.into(),
             model_identifier: name.into(),
-            guid: guid_of(&variables),
+            guid: guid_of(&variables, &Capabilities::default()),
             description: description.into(),
             version: String::new(),
             author: String::new(),
@@ -308,6 +325,17 @@ impl ModelInfo {
             default_experiment: (0.0, 1.0, 1e-6, 1e-3),
             capabilities: Capabilities::default(),
             terminals: Vec::new(),
+            clocks: Vec::new(),
+        }
+    }
+
+    /// The description with these capabilities, and a GUID that fingerprints them too (a model
+    /// that starts to take input derivatives is another FMU to its importers).
+    pub fn with_capabilities(self, capabilities: Capabilities) -> ModelInfo {
+        ModelInfo {
+            guid: guid_of(&self.variables, &capabilities),
+            capabilities,
+            ..self
         }
     }
 
@@ -371,6 +399,19 @@ pub trait Model: Clone + Send + 'static {
         Err("this model cannot interpolate inputs".into())
     }
 
+    /// The model partition of clock `clock` ([`ModelInfo::clocks`]), activated `h` > 0 after the
+    /// model's current time: everything up to the activation time. One-partition models advance
+    /// as in a step.
+    fn activate(&mut self, _clock: usize, h: f64) -> Result<(), String> {
+        self.do_step(h)
+    }
+
+    /// After initialization, whether the parameters in force agree with clock `clock`'s declared
+    /// constant `interval` (a clocked instance refuses to start otherwise, with this message).
+    fn check_clock(&self, _clock: usize, _interval: f64) -> Result<(), String> {
+        Ok(())
+    }
+
     /// ∂unknown/∂known at the current communication point: unknowns are outputs and state
     /// derivatives, knowns continuous inputs and states ([`ModelInfo::is_unknown`],
     /// [`ModelInfo::is_known`]; models with `provides_directional_derivative`).
@@ -413,8 +454,9 @@ macro_rules! crate_model_info {
 /// other v5 names).
 const GUID_NAMESPACE: uuid::Uuid = uuid::Uuid::from_u128(0x4c1f_5a1e_9b0d_4e57_a6c3_2f8e_1d7b_90a4);
 
-/// A GUID that changes whenever the variable table changes: the name-based UUID (v5) of its rows.
-pub fn guid_of(variables: &[VariableInfo]) -> String {
+/// A GUID that changes whenever the variable table or the capabilities change: the name-based
+/// UUID (v5) of the table's rows and the capabilities.
+pub fn guid_of(variables: &[VariableInfo], capabilities: &Capabilities) -> String {
     let rows: String = variables
         .iter()
         .map(|v| {
@@ -430,7 +472,8 @@ pub fn guid_of(variables: &[VariableInfo]) -> String {
                 v.derivative_of
             )
         })
-        .collect();
+        .collect::<String>()
+        + &format!("{capabilities:?}");
     format!("{{{}}}", uuid::Uuid::new_v5(&GUID_NAMESPACE, rows.as_bytes()))
 }
 
@@ -463,9 +506,19 @@ mod tests {
             let v = VariableInfo::new("x.p", Type::Real, Causality::Output, Variability::Continuous, "p");
             vec![v.unit(unit)]
         };
-        let g = guid_of(&row("m"));
-        assert_eq!(g, guid_of(&row("m")), "the same table, the same GUID");
-        assert_ne!(g, guid_of(&row("N")), "another unit, another GUID");
+        let none = Capabilities::default();
+        let g = guid_of(&row("m"), &none);
+        assert_eq!(g, guid_of(&row("m"), &none), "the same table, the same GUID");
+        assert_ne!(g, guid_of(&row("N"), &none), "another unit, another GUID");
+        let interpolating = Capabilities {
+            max_input_derivative_order: 1,
+            ..none
+        };
+        assert_ne!(
+            g,
+            guid_of(&row("m"), &interpolating),
+            "other capabilities, another GUID"
+        );
         let u = uuid::Uuid::parse_str(g.trim_matches(|c| c == '{' || c == '}')).unwrap();
         assert_eq!((g.len(), u.get_version_num()), (38, 5));
     }

@@ -58,18 +58,18 @@ macro_rules! export_fmi3 {
 
             #[no_mangle]
             pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
-                _name: *const c_char,
-                _token: *const c_char,
-                _resources: *const c_char,
-                _visible: Boolean,
-                _logging_on: Boolean,
+                name: *const c_char,
+                token: *const c_char,
+                resources: *const c_char,
+                visible: Boolean,
+                logging_on: Boolean,
                 env: *mut c_void,
                 log: Log,
                 _clock_update: *const c_void,
                 _lock: *const c_void,
                 _unlock: *const c_void,
             ) -> I {
-                abi::refuse_interface("fmi3InstantiateScheduledExecution", env, log)
+                abi::instantiate_scheduled_execution::<M>(view(), name, token, resources, visible, logging_on, env, log)
             }
 
             #[no_mangle]
@@ -91,6 +91,31 @@ macro_rules! export_fmi3 {
                 fmi3DeserializeFMUState(c: I, b: *const u8, size: usize, s: *mut FmuState) = deserialize_fmu_state;
                 fmi3DoStep(c: I, t: f64, h: f64, np: Boolean, ev: *mut Boolean, term: *mut Boolean,
                            early: *mut Boolean, last: *mut f64) = do_step;
+                fmi3EnterEventMode(c: I) = enter_event_mode;
+                fmi3EnterStepMode(c: I) = enter_step_mode;
+                fmi3UpdateDiscreteStates(c: I, a: *mut Boolean, b: *mut Boolean, x: *mut Boolean,
+                                         d: *mut Boolean, e: *mut Boolean, t: *mut f64) = update_discrete_states;
+            }
+
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi3ActivateModelPartition(c: I, clock: Vr, t: f64) -> c_int {
+                abi::activate_model_partition::<M>(view(), c, clock, t)
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi3SetClock(c: I, vr: *const Vr, n: usize, v: *const Boolean) -> c_int {
+                abi::set_clock::<M>(view(), c, vr, n, v)
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi3GetClock(c: I, vr: *const Vr, n: usize, _v: *mut Boolean) -> c_int {
+                abi::get_clock::<M>(view(), c, vr, n)
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi3GetIntervalDecimal(c: I, vr: *const Vr, n: usize, i: *mut f64, q: *mut c_int) -> c_int {
+                abi::get_interval_decimal::<M>(view(), c, vr, n, i, q)
+            }
+            #[no_mangle]
+            pub unsafe extern "C" fn fmi3GetShiftDecimal(c: I, vr: *const Vr, n: usize, s: *mut f64) -> c_int {
+                abi::get_shift_decimal::<M>(view(), c, vr, n, s)
             }
 
             $crate::__fmi3_values! {
@@ -136,15 +161,11 @@ macro_rules! export_fmi3 {
                 abi::get_adjoint_derivative::<M>(view(), c, u, nu, k, nk, seed, ns, sens, nsens)
             }
 
-            const NO_EVENTS: &str = "no Event Mode: hasEventMode = false";
-            const NO_CLOCKS: &str = "no clocks";
-            const CS_ONLY: &str = "Co-Simulation only";
+            const CONSTANT: &str = "its clocks are constant: the interval and shift are the modelDescription's";
+            const NO_FRACTIONS: &str = "supportsFraction = false: use the Decimal functions";
+            const CS_ONLY: &str = "Co-Simulation and Scheduled Execution only";
             $crate::__fmi3_unsupported! {
-                fmi3EnterEventMode(c: I) = NO_EVENTS;
-                fmi3EnterStepMode(c: I) = NO_EVENTS;
-                fmi3EvaluateDiscreteStates(c: I) = NO_EVENTS;
-                fmi3UpdateDiscreteStates(c: I, _a: *mut Boolean, _b: *mut Boolean, _x: *mut Boolean,
-                                         _d: *mut Boolean, _e: *mut Boolean, _t: *mut f64) = NO_EVENTS;
+                fmi3EvaluateDiscreteStates(c: I) = "providesEvaluateDiscreteStates = false";
                 fmi3EnterConfigurationMode(c: I) = "no structural parameters";
                 fmi3ExitConfigurationMode(c: I) = "no structural parameters";
                 fmi3GetNumberOfVariableDependencies(c: I, _vr: Vr, _n: *mut usize) = "providesPerElementDependencies = false";
@@ -152,17 +173,12 @@ macro_rules! export_fmi3 {
                                             _k: *mut c_int, _n: usize) = "providesPerElementDependencies = false";
                 fmi3GetBinary(c: I, _vr: *const Vr, _n: usize, _s: *mut usize, _v: *mut *const u8, _nv: usize) = "no Binary variables";
                 fmi3SetBinary(c: I, _vr: *const Vr, _n: usize, _s: *const usize, _v: *const *const u8, _nv: usize) = "no Binary variables";
-                fmi3GetClock(c: I, _vr: *const Vr, _n: usize, _v: *mut Boolean) = NO_CLOCKS;
-                fmi3SetClock(c: I, _vr: *const Vr, _n: usize, _v: *const Boolean) = NO_CLOCKS;
-                fmi3GetIntervalDecimal(c: I, _vr: *const Vr, _n: usize, _i: *mut f64, _q: *mut c_int) = NO_CLOCKS;
-                fmi3GetIntervalFraction(c: I, _vr: *const Vr, _n: usize, _i: *mut u64, _r: *mut u64, _q: *mut c_int) = NO_CLOCKS;
-                fmi3GetShiftDecimal(c: I, _vr: *const Vr, _n: usize, _s: *mut f64) = NO_CLOCKS;
-                fmi3GetShiftFraction(c: I, _vr: *const Vr, _n: usize, _s: *mut u64, _r: *mut u64) = NO_CLOCKS;
-                fmi3SetIntervalDecimal(c: I, _vr: *const Vr, _n: usize, _i: *const f64) = NO_CLOCKS;
-                fmi3SetIntervalFraction(c: I, _vr: *const Vr, _n: usize, _i: *const u64, _r: *const u64) = NO_CLOCKS;
-                fmi3SetShiftDecimal(c: I, _vr: *const Vr, _n: usize, _s: *const f64) = NO_CLOCKS;
-                fmi3SetShiftFraction(c: I, _vr: *const Vr, _n: usize, _s: *const u64, _r: *const u64) = NO_CLOCKS;
-                fmi3ActivateModelPartition(c: I, _clock: Vr, _t: f64) = NO_CLOCKS;
+                fmi3GetIntervalFraction(c: I, _vr: *const Vr, _n: usize, _i: *mut u64, _r: *mut u64, _q: *mut c_int) = NO_FRACTIONS;
+                fmi3GetShiftFraction(c: I, _vr: *const Vr, _n: usize, _s: *mut u64, _r: *mut u64) = NO_FRACTIONS;
+                fmi3SetIntervalDecimal(c: I, _vr: *const Vr, _n: usize, _i: *const f64) = CONSTANT;
+                fmi3SetIntervalFraction(c: I, _vr: *const Vr, _n: usize, _i: *const u64, _r: *const u64) = CONSTANT;
+                fmi3SetShiftDecimal(c: I, _vr: *const Vr, _n: usize, _s: *const f64) = CONSTANT;
+                fmi3SetShiftFraction(c: I, _vr: *const Vr, _n: usize, _s: *const u64, _r: *const u64) = CONSTANT;
                 fmi3EnterContinuousTimeMode(c: I) = CS_ONLY;
                 fmi3CompletedIntegratorStep(c: I, _np: Boolean, _e: *mut Boolean, _t: *mut Boolean) = CS_ONLY;
                 fmi3SetTime(c: I, _t: f64) = CS_ONLY;

@@ -1,6 +1,7 @@
-//! The FMI 3.0 Co-Simulation side of the generic layer: the same [`fmi2::Model`], table, instance
-//! and state machine as FMI 2 (crates/fmi2), seen through a [`View`] that gathers the per-axis
-//! variables into arrays and gives them the FMI 3 types; the fmi3 C functions ([`abi`],
+//! The FMI 3.0 side of the generic layer (Co-Simulation, with Event Mode and Scheduled Execution
+//! for models that declare clocks): the same [`fmi2::Model`], table, instance and state machine as
+//! FMI 2 (crates/fmi2), seen through a [`View`] that gathers the per-axis variables into arrays,
+//! gives them the FMI 3 types and adds the clocks; the fmi3 C functions ([`abi`],
 //! [`export_fmi3!`]), modelDescription.xml and terminalsAndIcons.xml ([`xml`]) and the reference
 //! result with array cells ([`reference`]). One cdylib exports both versions' functions, so the
 //! FMI 3 archive ships the very binaries of the FMI 2 one.

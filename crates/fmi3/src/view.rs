@@ -2,7 +2,8 @@
 //! [`fmi2::ModelInfo`]): the independent variable `time` first (value reference 0), then every
 //! table variable in order, the elements of a per-axis row gathered into one array at the place
 //! of its first element (`x.command.position`, `y.…`, `z.…` → `command.position`, 3 elements).
-//! Value references are the positions in this list.
+//! The model's clocks follow (input clocks, no table index). Value references are the positions
+//! in this list.
 
 use fmi2::{Causality, Model, ModelInfo, Type, Variability, VariableInfo};
 
@@ -17,6 +18,8 @@ pub enum Kind {
     Boolean,
     String,
     Enumeration(usize),
+    /// An input clock: its index in [`fmi2::ModelInfo::clocks`].
+    Clock(usize),
 }
 
 impl Kind {
@@ -40,6 +43,7 @@ impl Kind {
             Kind::Boolean => "Boolean",
             Kind::String => "String",
             Kind::Enumeration(_) => "Enumeration",
+            Kind::Clock(_) => "Clock",
         }
     }
 }
@@ -58,7 +62,7 @@ pub struct Var {
     pub min: Option<f64>,
     pub max: Option<f64>,
     /// The table indices of its values in serialization order: one for a scalar, one per
-    /// element for an array; none for `time`.
+    /// element for an array; none for `time` and clocks.
     pub elements: Vec<usize>,
     /// An array (a `<Dimension>`), even of one element.
     pub array: bool,
@@ -176,11 +180,22 @@ impl View {
                 d
             });
         }
-        let token = uuid::Uuid::new_v5(&TOKEN_NAMESPACE, info.guid.as_bytes());
+        add_clocks(info, &mut vars);
+        // The clocks are FMI 3 only: they change the token, not the FMI 2 GUID.
+        let clocks: String = info.clocks.iter().map(|c| format!("|{c:?}")).collect();
+        let token = uuid::Uuid::new_v5(&TOKEN_NAMESPACE, (info.guid.clone() + &clocks).as_bytes());
         View {
             token: format!("{{{token}}}"),
             vars,
             of_table,
+        }
+    }
+
+    /// The clock (index in [`fmi2::ModelInfo::clocks`]) of value reference `vr`, if it is one.
+    pub fn clock(&self, vr: u32) -> Option<usize> {
+        match self.get(vr)?.kind {
+            Kind::Clock(k) => Some(k),
+            _ => None,
         }
     }
 
@@ -193,6 +208,37 @@ impl View {
     /// Index of the variable called `name`.
     pub fn index_of(&self, name: &str) -> Option<usize> {
         self.vars.iter().position(|v| v.name == name)
+    }
+}
+
+/// The model's clocks after the table's variables: input clocks, and every output the model
+/// computes depends on them (their partition computes it; the outputs are not clocked variables,
+/// since Co-Simulation reads them in Step Mode, as the Reference-FMUs' `Clocks` declares an output
+/// a partition updates).
+fn add_clocks(info: &ModelInfo, vars: &mut Vec<Var>) {
+    for (k, c) in info.clocks.iter().enumerate() {
+        let vr = vars.len();
+        for v in vars.iter_mut().filter(|v| v.causality == Causality::Output) {
+            if let Some(deps) = v.dependencies.as_mut() {
+                deps.push(vr);
+            }
+        }
+        vars.push(Var {
+            name: c.name.clone(),
+            value_reference: vr as u32,
+            kind: Kind::Clock(k),
+            causality: Causality::Input,
+            variability: Variability::Discrete,
+            unit: None,
+            display_unit: None,
+            description: c.description.clone(),
+            min: None,
+            max: None,
+            elements: Vec::new(),
+            array: false,
+            derivative_of: None,
+            dependencies: None,
+        });
     }
 }
 
@@ -245,5 +291,40 @@ mod tests {
             .enumerate()
             .all(|(k, v)| v.value_reference == k as u32));
         assert!(view.token.len() == 38 && view.token != ModelInfo::new("M", "m", vec![]).guid);
+    }
+
+    #[test]
+    fn clocks_follow_the_table_and_the_outputs_depend_on_them() {
+        let rows: &[Row<u8>] = &[
+            ("u", Type::Real, Input, Continuous, "N", None, None, 0, "u"),
+            ("y", Type::Real, Output, Continuous, "m", None, None, 1, "y"),
+        ];
+        let mut t = variables(&expand(rows, &["x"], one));
+        t[1].dependencies = Some(vec![]);
+        let plain = ModelInfo::new("M", "m", t);
+        let clocked = ModelInfo {
+            clocks: vec![fmi2::Clock {
+                name: "tick".into(),
+                description: "tick".into(),
+                interval: 1e-3,
+                priority: 0,
+            }],
+            ..plain.clone()
+        };
+        let (a, b) = (View::from_info(&plain), View::from_info(&clocked));
+        assert_eq!(b.vars.len(), a.vars.len() + 1);
+        let tick = b.vars.last().unwrap();
+        assert_eq!(
+            (tick.value_reference, tick.kind, tick.causality),
+            (3, Kind::Clock(0), Input)
+        );
+        assert_eq!((b.clock(3), b.clock(1)), (Some(0), None));
+        assert_eq!(
+            b.vars[2].dependencies,
+            Some(vec![3]),
+            "y is computed by the tick's partition"
+        );
+        assert_ne!(a.token, b.token, "the FMI 3 interface changed");
+        assert_eq!(plain.guid, clocked.guid, "the FMI 2 one did not");
     }
 }

@@ -30,6 +30,9 @@ pub fn model_description(info: &ModelInfo, view: &View, start_values: &[Option<V
     );
     start(&mut w, "fmiModelDescription", &header);
     co_simulation(&mut w, info);
+    if !info.clocks.is_empty() {
+        scheduled_execution(&mut w, info);
+    }
     unit_definitions(&mut w, info);
     if !info.enumerations.is_empty() {
         start(&mut w, "TypeDefinitions", &[]);
@@ -102,11 +105,28 @@ fn co_simulation(w: &mut W, info: &ModelInfo) {
     if caps.might_return_early {
         cs.push(("mightReturnEarlyFromDoStep", "true".into()));
     }
-    cs.push(("hasEventMode", "false".into()));
+    // The standard: an FMU with clocks has Event Mode (there the importer activates them).
+    cs.push(("hasEventMode", (!info.clocks.is_empty()).to_string()));
     empty(w, "CoSimulation", &cs);
 }
 
+/// Scheduled Execution: the clocks' model partitions activated by the importer's scheduler.
+fn scheduled_execution(w: &mut W, info: &ModelInfo) {
+    let derivatives = info.capabilities.provides_directional_derivative.to_string();
+    let se = [
+        ("modelIdentifier", info.model_identifier.clone()),
+        ("canGetAndSetFMUState", "true".into()),
+        ("canSerializeFMUState", "true".into()),
+        ("providesDirectionalDerivatives", derivatives.clone()),
+        ("providesAdjointDerivatives", derivatives),
+    ];
+    empty(w, "ScheduledExecution", &se);
+}
+
 fn variable(w: &mut W, info: &ModelInfo, v: &Var, starts: &[Value]) {
+    if let Kind::Clock(k) = v.kind {
+        return clock(w, info, v, k);
+    }
     let mut a = vec![
         ("name", v.name.clone()),
         ("valueReference", v.value_reference.to_string()),
@@ -159,6 +179,22 @@ fn variable(w: &mut W, info: &ModelInfo, v: &Var, starts: &[Value]) {
         }
     }
     end(w, name);
+}
+
+/// An input clock, periodic with the constant interval the model declares.
+fn clock(w: &mut W, info: &ModelInfo, v: &Var, k: usize) {
+    let c = &info.clocks[k];
+    let a = [
+        ("name", v.name.clone()),
+        ("valueReference", v.value_reference.to_string()),
+        ("description", v.description.clone()),
+        ("causality", causality(v.causality).into()),
+        ("variability", variability(v.variability).into()),
+        ("intervalVariability", "constant".into()),
+        ("intervalDecimal", real(c.interval)),
+        ("priority", c.priority.to_string()),
+    ];
+    empty(w, "Clock", &a);
 }
 
 /// Outputs and state derivatives with their dependencies (value references), and the initial

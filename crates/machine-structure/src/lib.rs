@@ -29,6 +29,9 @@ pub struct MachineStructure {
     /// Mass riding on the frame per axis (table, kg): −m·a_frame is the load on that axis.
     pub coupling_mass: [f64; 3],
     pub drive_force: [f64; 3],
+    /// d(driveForce)/dt over the coming steps (fmi2SetRealInputDerivatives, first-order hold);
+    /// 0 holds the force. Setting the force sets it back to 0.
+    pub drive_rate: [f64; 3],
     pub state: [[ModeState; MODES]; 3],
 }
 
@@ -42,6 +45,7 @@ impl Default for MachineStructure {
             // mode, and masters with different delay conventions no longer agree bit for bit.
             coupling_mass: [0.0; 3],
             drive_force: [0.0; 3],
+            drive_rate: [0.0; 3],
             state: Default::default(),
         }
     }
@@ -70,10 +74,16 @@ impl MachineStructure {
             .sum();
         -self.coupling_mass[i] * a
     }
+    /// Exact over h with each drive force held, or ramped at its rate; a ramped force ends at its
+    /// value at the new time.
     pub fn step(&mut self, h: f64) {
         for i in 0..3 {
+            let (force, rate) = (self.drive_force[i], self.drive_rate[i]);
             for k in 0..MODES {
-                self.state[i][k].step(&self.modes[i][k], self.drive_force[i], h);
+                self.state[i][k].step_ramp(&self.modes[i][k], force, rate, h);
+            }
+            if rate != 0.0 {
+                self.drive_force[i] = force + rate * h;
             }
         }
     }
@@ -199,6 +209,8 @@ impl fmi2::Model for MachineStructureFmu {
                 fmi2::crate_model_info!("MachineStructure", description, fmi2::table::variables(table()));
             let capabilities = fmi2::Capabilities {
                 provides_directional_derivative: true,
+                // The drive forces with a first-order hold (exact: the model is linear).
+                max_input_derivative_order: 1,
                 ..info.capabilities
             };
             // CncMotion's terminal of the same name (`plug`): drive forces in, load forces out.
@@ -212,9 +224,8 @@ impl fmi2::Model for MachineStructureFmu {
                 ],
             }];
             ModelInfo {
-                capabilities,
                 terminals,
-                ..info
+                ..info.with_capabilities(capabilities)
             }
         })
     }
@@ -275,10 +286,25 @@ impl fmi2::Model for MachineStructureFmu {
             Slot::Force => {
                 ranges::check_drive_force(x)?;
                 m.drive_force[i] = x;
+                m.drive_rate[i] = 0.0;
             }
             _ => return Err("outputs cannot be set".into()),
         }
         Ok(())
+    }
+
+    /// The first derivative of a drive force: the force ramps over the coming steps (exact,
+    /// [`modal::ModeState::step_ramp`]).
+    fn set_input_derivative(&mut self, index: usize, _order: u32, value: f64) -> Result<(), String> {
+        let (e, i) = (&table()[index], table()[index].axis);
+        match e.slot {
+            Slot::Force => {
+                ranges::check_drive_rate(value)?;
+                self.0.drive_rate[i] = value;
+                Ok(())
+            }
+            _ => Err("not an input".into()),
+        }
     }
 
     fn exit_initialization(&mut self) -> Result<(), String> {
@@ -287,6 +313,11 @@ impl fmi2::Model for MachineStructureFmu {
 
     fn do_step(&mut self, h: f64) -> Result<(), String> {
         self.0.step(h);
+        // A ramped force stays within the input's range.
+        self.0
+            .drive_force
+            .iter()
+            .try_for_each(|&f| ranges::check_drive_force(f))?;
         ranges::check_outputs(&self.0)
     }
 

@@ -63,6 +63,22 @@ impl ModeState {
         self.v = e[1][0] * dq + e[1][1] * self.v;
     }
 
+    /// Exact step of length h under the force F(τ) = force + rate·τ (first-order hold): the
+    /// deviation from the ramp's particular solution q_p = F(τ)/k − 2ζ·rate/(kω), q̇_p = rate/k
+    /// evolves freely. With rate 0 it is [`ModeState::step`], bit for bit.
+    pub fn step_ramp(&mut self, mode: &Mode, force: f64, rate: f64, h: f64) {
+        if rate == 0.0 {
+            return self.step(mode, force, h);
+        }
+        let (w, k) = (mode.omega(), mode.stiffness());
+        let lag = 2.0 * mode.damping * rate / (k * w);
+        let e = free_response(mode.damping, w, h);
+        let dq = self.q - (force / k - lag);
+        let dv = self.v - rate / k;
+        self.q = (force + rate * h) / k - lag + e[0][0] * dq + e[0][1] * dv;
+        self.v = rate / k + e[1][0] * dq + e[1][1] * dv;
+    }
+
     /// q̈ under the force (m/s²).
     pub fn acceleration(&self, mode: &Mode, force: f64) -> f64 {
         let w = mode.omega();
@@ -140,6 +156,47 @@ mod tests {
         let mut c = ModeState::default();
         c.step(&mode, 100.0, 50.0);
         assert!((c.q - 100.0 / mode.stiffness()).abs() < 1e-15);
+    }
+
+    /// The ramp F = r·t on a mode at rest, against the textbook response
+    /// q = (r/k)·[t − 2ζ/ω + e^{−ζωt}(2ζ/ω·cos ω_d t + (2ζ² − 1)/ω_d·sin ω_d t)] (under-damped),
+    /// (r/k)·(t − sin ωt/ω) undamped; one long step and many short ones alike.
+    #[test]
+    fn ramp_force_against_the_closed_form() {
+        for zeta in [0.0, 0.03, 0.5] {
+            let mode = Mode {
+                frequency: 45.0,
+                damping: zeta,
+                mass: 400.0,
+            };
+            let (w, k, r) = (mode.omega(), mode.stiffness(), 2.0e5);
+            let wd = w * (1.0 - zeta * zeta).sqrt();
+            let exact = |t: f64| {
+                let decay = (-zeta * w * t).exp();
+                let free = 2.0 * zeta / w * (wd * t).cos() + (2.0 * zeta * zeta - 1.0) / wd * (wd * t).sin();
+                r / k * (t - 2.0 * zeta / w + decay * free)
+            };
+            for (n, h) in [(1, 0.0137), (10, 0.01), (1000, 1e-4)] {
+                let mut s = ModeState::default();
+                for j in 0..n {
+                    s.step_ramp(&mode, r * j as f64 * h, r, h);
+                }
+                let t = n as f64 * h;
+                let scale = r / k * t;
+                assert!(
+                    (s.q - exact(t)).abs() < 1e-12 * scale,
+                    "ζ {zeta}, {n} × {h}: {} vs {}",
+                    s.q,
+                    exact(t)
+                );
+            }
+        }
+        // Rate 0 is the held force, bit for bit.
+        let mode = small_mill()[2][1];
+        let (mut a, mut b) = (ModeState { q: 1e-6, v: -2e-4 }, ModeState { q: 1e-6, v: -2e-4 });
+        a.step(&mode, 300.0, 1e-3);
+        b.step_ramp(&mode, 300.0, 0.0, 1e-3);
+        assert_eq!((a.q.to_bits(), a.v.to_bits()), (b.q.to_bits(), b.v.to_bits()));
     }
 
     #[test]

@@ -12,6 +12,8 @@ pub const MODAL_MASS_KG: (f64, f64) = (1e-3, 1e6);
 pub const COUPLING_MASS_KG: (f64, f64) = (0.0, 1e5);
 /// |driveForce| (N).
 pub const MAX_DRIVE_FORCE_N: f64 = 1e7;
+/// |d driveForce/dt| (N/s): the whole force range in a microsecond.
+pub const MAX_DRIVE_RATE_N_S: f64 = 1e13;
 /// |q| (m) and |q̇| (m/s) of a modal state: beyond any elastic frame deflection.
 pub const MAX_MODAL_DEFLECTION_M: f64 = 1e3;
 pub const MAX_MODAL_VELOCITY_M_S: f64 = 1e6;
@@ -35,6 +37,15 @@ pub fn check_drive_force(x: f64) -> Result<(), String> {
     within("driveForce", x, (-MAX_DRIVE_FORCE_N, MAX_DRIVE_FORCE_N), "N")
 }
 
+pub fn check_drive_rate(x: f64) -> Result<(), String> {
+    within(
+        "d(driveForce)/dt",
+        x,
+        (-MAX_DRIVE_RATE_N_S, MAX_DRIVE_RATE_N_S),
+        "N/s",
+    )
+}
+
 /// Parameters, inputs and states (a deserialized state may be corrupted).
 pub fn check_structure(s: &MachineStructure) -> Result<(), String> {
     for i in 0..3 {
@@ -43,6 +54,7 @@ pub fn check_structure(s: &MachineStructure) -> Result<(), String> {
         }
         within("couplingMass", s.coupling_mass[i], COUPLING_MASS_KG, "kg")?;
         check_drive_force(s.drive_force[i])?;
+        check_drive_rate(s.drive_rate[i])?;
         for st in &s.state[i] {
             let q = MAX_MODAL_DEFLECTION_M;
             within("modal deflection", st.q, (-q, q), "m")?;

@@ -357,3 +357,85 @@ fn directional_derivatives_of_parameters_are_refused() {
     let (status, _) = fmu.directional(&["x.driveForce"], &["x.driveForce"], &[1.0]);
     assert_eq!(status, ERROR, "an input is not an unknown");
 }
+
+type FnInputDerivatives =
+    unsafe extern "C" fn(Component, *const c_uint, usize, *const c_int, *const f64) -> c_int;
+
+impl Fmu {
+    fn set_derivative(&self, name: &str, order: c_int, x: f64) -> c_int {
+        let f = unsafe {
+            self.lib
+                .get::<FnInputDerivatives>(b"fmi2SetRealInputDerivatives")
+                .unwrap()
+        };
+        unsafe { f(self.c, &self.vrs[name], 1, &order, &x) }
+    }
+}
+
+/// canInterpolateInputs: fmi2SetRealInputDerivatives ramps a drive force over the steps that
+/// follow (first-order hold). From rest under F = r·t each mode follows the textbook ramp
+/// response q = (r/k)·[t − 2ζ/ω + e^{−ζωt}(2ζ/ω·cos ω_d t + (2ζ² − 1)/ω_d·sin ω_d t)], in one step
+/// or in steps whose value and slope the importer sets again each time (as fmpy does); setting the
+/// value alone holds it again.
+#[test]
+fn a_drive_force_ramps_with_its_derivative() {
+    let r = 4.0e4;
+    let exact = |fmu: &Fmu, t: f64| -> f64 {
+        (1..=2)
+            .map(|k| {
+                let mode = |p: &str| fmu.get(&format!("x.mode{k}.{p}"));
+                let (m, zeta, w) = (
+                    mode("mass"),
+                    mode("damping"),
+                    2.0 * std::f64::consts::PI * mode("frequency"),
+                );
+                let wd = w * (1.0 - zeta * zeta).sqrt();
+                let free = 2.0 * zeta / w * (wd * t).cos() + (2.0 * zeta * zeta - 1.0) / wd * (wd * t).sin();
+                r / (m * w * w) * (t - 2.0 * zeta / w + (-zeta * w * t).exp() * free)
+            })
+            .sum()
+    };
+    let one = Fmu::new(50.0);
+    assert_eq!(one.set_derivative("x.driveForce", 1, r), OK);
+    one.step(0.0, 0.02);
+    let want = exact(&one, 0.02);
+    let near = |x: f64| (x - want).abs() <= 1e-11 * want.abs();
+    assert!(
+        near(one.get("x.deflection")),
+        "{} vs {want}",
+        one.get("x.deflection")
+    );
+    assert_eq!(one.get("x.driveForce"), r * 0.02, "the input at the new time");
+    let many = Fmu::new(50.0);
+    for j in 0..20 {
+        let t = j as f64 * 1e-3;
+        many.set("x.driveForce", r * t);
+        assert_eq!(many.set_derivative("x.driveForce", 1, r), OK);
+        many.step(t, 1e-3);
+    }
+    assert!(
+        near(many.get("x.deflection")),
+        "{} vs {want}",
+        many.get("x.deflection")
+    );
+    // The value alone holds the force (the slope set before it is dropped).
+    let (held, ramped) = (Fmu::new(0.0), Fmu::new(0.0));
+    assert_eq!(held.set_derivative("x.driveForce", 1, r), OK);
+    held.set("x.driveForce", 100.0);
+    ramped.set("x.driveForce", 100.0);
+    held.step(0.0, 0.01);
+    ramped.step(0.0, 0.01);
+    assert_eq!(held.get("x.deflection"), ramped.get("x.deflection"));
+    // Orders other than 1, outputs and non-finite slopes are refused.
+    for (name, order, x) in [
+        ("x.driveForce", 2, 1.0),
+        ("x.loadForce", 1, 1.0),
+        ("x.driveForce", 1, f64::NAN),
+    ] {
+        assert_eq!(
+            Fmu::new(0.0).set_derivative(name, order, x),
+            ERROR,
+            "{name} order {order} = {x}"
+        );
+    }
+}

@@ -133,6 +133,7 @@ pub unsafe fn setup_experiment<M: Model>(
             return inst.error(&format!("fmi2SetupExperiment: bad start {start} / stop {stop}"));
         }
         inst.time = start;
+        inst.start_time = start;
         inst.stop_time = (stop_defined != 0).then_some(stop);
         Status::Ok
     })
@@ -184,7 +185,9 @@ pub fn reset_instance<M: Model>(inst: &mut Instance<M>, function: &str) -> Statu
     inst.model = M::new(inst.resources.as_deref());
     inst.state = State::Instantiated;
     inst.time = 0.0;
+    inst.start_time = 0.0;
     inst.stop_time = None;
+    inst.activated_at.clear();
     inst.last_step = Status::Ok;
     inst.event(function);
     Status::Ok

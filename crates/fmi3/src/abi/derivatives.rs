@@ -81,7 +81,7 @@ unsafe fn partials<M: Model>(
     sensitivity: *mut f64,
     n_sensitivity: usize,
 ) -> c_int {
-    with3::<M>(c, f, mask::DERIVATIVES, |inst| {
+    with3::<M>(c, f, mask::PARTIALS, |inst| {
         let (Some(u), Some(k)) = (slice(unknowns, n_unknowns), slice(knowns, n_knowns)) else {
             return inst.error(&format!("{f}: NULL array with a length > 0"));
         };
