@@ -209,8 +209,8 @@ class Slave:
         self.steps += 1
         self.time = self.t0 + self.steps * h
 
-    # Set when initialization failed: the instance is in the error state, where fmi2Terminate is
-    # not allowed (only get, reset and free).
+    # Set when initialization or a set failed: the instance is in the error state, where
+    # fmi2Terminate is not allowed (only get, reset and free).
     failed = False
 
     def free(self) -> None:

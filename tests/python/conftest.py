@@ -86,11 +86,7 @@ def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
 # --- Known FMU defects found by this suite --------------------------------------------------------
 # Each entry marks the matching tests xfail(strict=True): they still run, are reported as xfailed,
 # and turn into a FAILURE as soon as the defect is fixed (then delete the entry). Keep it short.
-KNOWN_FMU_ISSUES = {
-    "test_two_way_coupling_stable_at_1ms":
-        "with the tables' 50 kg on the frame (couplingMass, opt-in; 0 by default) the 1 ms Jacobi loop "
-        "diverges after ~0.7 s through the 150 Hz z mode (Gauss-Seidel stays bounded, 205 N)",
-}
+KNOWN_FMU_ISSUES: dict[str, str] = {}
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:

@@ -193,16 +193,26 @@ TABLES = {f"{a}.couplingMass": 50.0 for a in "xyz"}  # the default axes' table m
 
 def test_two_way_coupling_stable_at_1ms(cnc: sim.Unpacked, structure: sim.Unpacked) -> None:
     """With the tables' mass on the frame on all three axes the two-way loop (loadForce back to the
-    axes) must stay bounded at the 1 ms Jacobi step: drive forces within twice the one-way ones."""
+    axes) at 1 ms: Gauss-Seidel stays bounded (drive forces within twice the one-way ones), Jacobi
+    diverges. The linearised coupled step map (examples/coupling_aids.py) puts the limits at 28 kg
+    (Jacobi, spectral radius 1; 38.3 kg simulated) and 127 kg (Gauss-Seidel, the model's own limit
+    1/Σ(1/m_k) = 127.3 kg on z), so 50 kg lies between them."""
     one = cosim.cosim_slaves(cnc, structure, structure_params=TABLES, stop_time=2.0, two_way=False)
     peak_one = max(np.max(np.abs(one[f"cnc.{a}.driveForce"])) for a in "xyz")
     try:
-        two = cosim.cosim_slaves(cnc, structure, structure_params=TABLES, stop_time=2.0)
+        two = cosim.cosim_slaves(cnc, structure, structure_params=TABLES, stop_time=2.0, scheme="gauss-seidel")
     except RuntimeError as e:  # an FMU refusing a non-finite coupling value
         pytest.fail(str(e)[:300])
     peak_two = max(np.max(np.abs(two[f"cnc.{a}.driveForce"])) for a in "xyz")
-    print(f"peak drive force: one-way {peak_one:.4g} N, two-way {peak_two:.4g} N")
+    print(f"peak drive force: one-way {peak_one:.4g} N, two-way Gauss-Seidel {peak_two:.4g} N")
     assert np.isfinite(peak_two) and peak_two <= 2 * peak_one, (peak_one, peak_two)
+    try:
+        jacobi = cosim.cosim_slaves(cnc, structure, structure_params=TABLES, stop_time=2.0)
+        peak_jacobi = max(np.max(np.abs(jacobi[f"cnc.{a}.driveForce"])) for a in "xyz")
+    except RuntimeError:  # diverged to non-finite values, which the FMU refuses
+        peak_jacobi = np.inf
+    print(f"two-way Jacobi: peak {peak_jacobi:.4g} N")
+    assert not peak_jacobi <= 2 * peak_one, (peak_one, peak_jacobi)
 
 
 STOPS = "G21 G90 G17 G61\nG1 X30 F4000\nG4 P0.25\nG1 Y20\nG4 P0.25\nG1 X0 Y0\nG4 P0.25\nG1 Z-5 F2000\nM30\n"
