@@ -204,10 +204,11 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
                 top: &s.top,
                 bands: &s.bands,
             };
-            let (mut t, mut x) = scurve7_banded::ramp(&banded, v, v_side);
+            // Every ramp here rises from v (one forward envelope).
+            let rise = scurve7_banded::Rise::from(&banded, v.max(0.0));
+            let (mut t, mut x) = rise.time_distance(v_side);
             if x > s.length {
-                let reach = scurve7_banded::max_speed(&banded, s.length, v);
-                (t, x) = scurve7_banded::ramp(&banded, v, reach);
+                (t, x) = rise.time_distance(rise.max_speed(s.length));
             }
             cost += t - x / v_side;
         }

@@ -550,9 +550,10 @@ pub(super) fn joined_loss(
     };
     let block = scurve7_banded::plan(&banded, l_fast, v_slow, v_slow, v_fast);
     let loss = chain_loss + (l_fast / v_slow - block.duration()).max(0.0);
-    let t = |a: f64, b: f64| scurve7_banded::ramp_time(&banded, a, b);
     let v_peak = block.v_peak();
-    let apart = t(0.0, v_slow) + t(v_slow, v_peak) - t(0.0, v_peak);
+    let from_rest = scurve7_banded::Rise::from(&banded, 0.0);
+    let t = |v: f64| from_rest.time_distance(v).0;
+    let apart = t(v_slow) + scurve7_banded::ramp_time(&banded, v_slow, v_peak) - t(v_peak);
     (loss <= apart).then_some(loss)
 }
 
