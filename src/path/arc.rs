@@ -188,38 +188,29 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
     let v_capped = budget.max_speed(frame.v0).0;
     let v_curve = TOP_SHARE * v_zero;
     let v_top = v_curve.min(v_capped);
-    let pair = |v: f64| {
-        let (a_free, j0) = budget.free_at(v);
-        let j_share = BAND_JERK_SHARE * j0;
-        let a_jerk = budget.acceleration_leaving(v, j_share);
-        let a_reach = (2.0 * v * j0.max(0.0)).sqrt();
-        // Reserving for a_jerk leaves exactly j_share (its cell binds); for less, what is left.
-        let (reserved, j) = if a_jerk <= a_reach {
-            (a_jerk, budget.jerk_with(v, a_jerk).max(j_share))
-        } else {
-            (a_reach, budget.jerk_with(v, a_reach))
-        };
-        (a_free.min(reserved), j)
-    };
     if v_top <= 0.0 || !v_top.is_finite() {
         return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
     }
-    // The grid speed at or just above the top, and the ones below it.
+    // The grid speeds below the top, stepped down from the one at or just above it, by
+    // increasing speed as `Bands::below` keeps them, and last the speed of the top's pair.
     let above = grid_at_or_above(v_top);
-    let mut levels = Vec::with_capacity(MAX_BANDS);
+    let mut speeds = [0.0; MAX_BANDS + 1];
     let mut v = above;
-    for _ in 0..MAX_BANDS {
+    for g in speeds[..MAX_BANDS].iter_mut().rev() {
         v /= BAND_GRID;
-        if v < v_top {
-            let (a, j) = pair(v);
-            levels.push(Band {
-                v_top: v,
-                a_max: a,
-                j_max: j,
-            });
-        }
+        *g = v;
     }
-    let (a, j) = pair(above.min(v_curve).max(v_top));
+    speeds[MAX_BANDS] = above.min(v_curve).max(v_top);
+    let (a, j) = band_pairs(&budget, &speeds);
+    let levels: Vec<Band> = (0..MAX_BANDS)
+        .filter(|&k| speeds[k] < v_top)
+        .map(|k| Band {
+            v_top: speeds[k],
+            a_max: a[k],
+            j_max: j[k],
+        })
+        .collect();
+    let (a, j) = (a[MAX_BANDS], j[MAX_BANDS]);
     let limits = Limits {
         v_max: v_top,
         a_max: a,
@@ -230,6 +221,28 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
         return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
     }
     (limits, Bands::below(&limits, &levels))
+}
+
+/// The pair (A, J) a band ending at each speed of `v` takes (`curve_bands`): the acceleration
+/// reserved for the jerk terms is the one leaving `BAND_JERK_SHARE` of J(v, 0), at most about
+/// the most a ramp within the band reaches, sqrt(2·v·J(v, 0)).
+fn band_pairs<const N: usize>(budget: &Budget, v: &[f64; N]) -> ([f64; N], [f64; N]) {
+    let (a_free, j0) = budget.free_at(v);
+    let j_share = j0.map(|j| BAND_JERK_SHARE * j);
+    let a_jerk = budget.acceleration_leaving(v, &j_share);
+    let a_reach: [f64; N] = std::array::from_fn(|k| (2.0 * v[k] * j0[k].max(0.0)).sqrt());
+    // Reserving for a_jerk leaves exactly j_share (its cell binds); for less, what is left.
+    let reserved: [f64; N] = std::array::from_fn(|k| a_jerk[k].min(a_reach[k]));
+    let left = budget.jerk_with(v, &reserved);
+    let a = std::array::from_fn(|k| a_free[k].min(reserved[k]));
+    let j = std::array::from_fn(|k| {
+        if a_jerk[k] <= a_reach[k] {
+            left[k].max(j_share[k])
+        } else {
+            left[k]
+        }
+    });
+    (a, j)
 }
 
 /// Largest per-axis bounds over the cells.
