@@ -8,6 +8,7 @@
 //! and the merge per ramp; every piece, hence every sum, is the one a rise built whole gives.
 
 use crate::feed::bands::{Banded, MAX_BANDS};
+use std::cell::RefCell;
 
 /// Pieces at most in an envelope: a rise and a plateau per band.
 const MAX_PIECES: usize = 2 * (MAX_BANDS + 1);
@@ -141,6 +142,13 @@ fn forward(levels: &[Level]) -> Pieces {
 /// Backward envelope from `hi` down over `levels` (pieces by decreasing speed).
 fn backward(levels: &[Level], hi: f64) -> Pieces {
     let mut bwd = Pieces::new();
+    backward_into(levels, hi, &mut bwd);
+    bwd
+}
+
+/// `backward` into `bwd` (emptied first).
+fn backward_into(levels: &[Level], hi: f64, bwd: &mut Pieces) {
+    bwd.n = 0;
     let mut g: f64 = 0.0;
     for l in levels.iter().rev() {
         let top = l.top.min(hi);
@@ -165,7 +173,6 @@ fn backward(levels: &[Level], hi: f64) -> Pieces {
             g = (g0 * g0 + 2.0 * l.j * (top - l.floor)).sqrt();
         }
     }
-    bwd
 }
 
 /// min(F, B) up to `hi` over the common refinement of both: on each stretch both are a² linear
@@ -207,7 +214,12 @@ fn merge(fwd: &[Piece], bwd: &[Piece], hi: f64, mut take: impl FnMut(&Piece)) {
 pub struct Rise<'a> {
     b: &'a Banded<'a>,
     lo: f64,
+    /// The bands above lo (`levels` up to no top): those of a rise to hi are the ones below it.
+    levels: [Level; MAX_BANDS + 1],
+    n: usize,
     fwd: Pieces,
+    /// Room for each rise's backward envelope (not zeroed again for every rise).
+    bwd: RefCell<Pieces>,
 }
 
 impl<'a> Rise<'a> {
@@ -216,7 +228,10 @@ impl<'a> Rise<'a> {
         Rise {
             b,
             lo,
+            levels,
+            n,
             fwd: forward(&levels[..n]),
+            bwd: RefCell::new(Pieces::new()),
         }
     }
 
@@ -232,13 +247,10 @@ impl<'a> Rise<'a> {
     pub fn time_distance(&self, hi: f64) -> (f64, f64) {
         let mut sum = Sum::default();
         if hi > self.lo {
-            let (levels, n) = levels(self.b, self.lo, hi);
-            merge(
-                self.fwd.as_slice(),
-                backward(&levels[..n], hi).as_slice(),
-                hi,
-                |p| sum.add(p),
-            );
+            let n = self.levels[..self.n].partition_point(|l| l.floor < hi);
+            let mut bwd = self.bwd.borrow_mut();
+            backward_into(&self.levels[..n], hi, &mut bwd);
+            merge(self.fwd.as_slice(), bwd.as_slice(), hi, |p| sum.add(p));
         }
         (sum.t, sum.s)
     }
