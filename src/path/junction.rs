@@ -223,7 +223,7 @@ fn within_tolerance(h: &Hermite, a: &Source, b: &Source, tol: f64) -> bool {
     let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
     let bound = tol - guard;
     (0..=DEVIATION_SAMPLES).all(|k| {
-        let p = h.eval(h.length() * k as f64 / DEVIATION_SAMPLES as f64).p;
+        let p = h.point(h.length() * k as f64 / DEVIATION_SAMPLES as f64);
         // min(|pa|, |pb|) ≤ bound: the piece the sample starts nearer first (the other often
         // needs no distance).
         let (near, far) = if 2 * k <= DEVIATION_SAMPLES {
