@@ -138,6 +138,11 @@ impl Frame {
     }
 }
 
+/// The whole budget, none kept for the tangential law: where the bands are measured from.
+const NO_SHARES: Shares = Shares {
+    a_cap: 1.0,
+    tangential: 0.0,
+};
 /// A speed above any a curve allows (m/s): where the search for its budget's end starts.
 const CURVE_SPEED_CEILING: f64 = 1e4;
 /// Band tops lie on one grid of speeds for every curve, q^n m/s (n whole), the `MAX_BANDS`
@@ -178,19 +183,17 @@ fn grid_at_or_above(v: f64) -> f64 {
 /// curve itself limits it), so a band's pair does not depend on the caps: a higher cap leaves
 /// every band as it was and adds speed above.
 pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (Limits, Bands) {
-    let frame = Frame::of(cells, rho, v_cap, machine);
-    let zero = Shares {
-        a_cap: 1.0,
-        tangential: 0.0,
+    let Some(Top {
+        budget,
+        v_curve,
+        v_top,
+    }) = top(cells, rho, v_cap, machine)
+    else {
+        return (
+            curve_limits(cells, rho, v_cap, machine, NO_SHARES),
+            Bands::default(),
+        );
     };
-    let budget = frame.budget(cells, machine, zero);
-    let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
-    let v_capped = budget.max_speed(frame.v0).0;
-    let v_curve = TOP_SHARE * v_zero;
-    let v_top = v_curve.min(v_capped);
-    if v_top <= 0.0 || !v_top.is_finite() {
-        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
-    }
     // The grid speeds below the top, stepped down from the one at or just above it, by
     // increasing speed as `Bands::below` keeps them, and last the speed of the top's pair.
     let above = grid_at_or_above(v_top);
@@ -218,9 +221,51 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
         snap_max: machine.max_snap,
     };
     if a <= 0.0 || j <= 0.0 {
-        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
+        return (
+            curve_limits(cells, rho, v_cap, machine, NO_SHARES),
+            Bands::default(),
+        );
     }
     (limits, Bands::below(&limits, &levels))
+}
+
+/// Where a curve's bands start (`curve_bands`): its budget with no shares kept, the speed its
+/// top may reach (`TOP_SHARE` of where the budget ends) and its top speed within the caps.
+struct Top<'a> {
+    budget: Budget<'a>,
+    v_curve: f64,
+    v_top: f64,
+}
+
+/// The curve's `Top`, or None where it has no budget (its plain limits then).
+fn top<'a>(cells: &'a [[Vec3; 3]], rho: f64, v_cap: f64, machine: &'a Machine) -> Option<Top<'a>> {
+    let frame = Frame::of(cells, rho, v_cap, machine);
+    let budget = frame.budget(cells, machine, NO_SHARES);
+    let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
+    let v_capped = budget.max_speed(frame.v0).0;
+    let v_curve = TOP_SHARE * v_zero;
+    let v_top = v_curve.min(v_capped);
+    (v_top > 0.0 && v_top.is_finite()).then_some(Top {
+        budget,
+        v_curve,
+        v_top,
+    })
+}
+
+/// The top speed of `curve_bands`' limits alone: the top band's pair decides whether the curve
+/// has bands (the pair of each other band is not needed for it).
+pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> f64 {
+    let plain = || curve_limits(cells, rho, v_cap, machine, NO_SHARES).v_max;
+    let Some(t) = top(cells, rho, v_cap, machine) else {
+        return plain();
+    };
+    let above = grid_at_or_above(t.v_top);
+    let (a, j) = band_pairs(&t.budget, &[above.min(t.v_curve).max(t.v_top)]);
+    if a[0] <= 0.0 || j[0] <= 0.0 {
+        plain()
+    } else {
+        t.v_top
+    }
 }
 
 /// The pair (A, J) a band ending at each speed of `v` takes (`curve_bands`): the acceleration

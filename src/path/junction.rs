@@ -5,7 +5,7 @@
 //! corner (`local_cost`), or None (a stop at the corner). The tolerance only admits cuts; the time
 //! picks among them, so a larger tolerance does not pick a slower one.
 
-use super::chain::{piece_limits, Curve, CurveLimits};
+use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
 use super::hermite::Hermite;
 use super::smooth::{jet_at, joined_loss, Span};
 use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
@@ -27,8 +27,8 @@ const DEVIATION_SAMPLES: usize = 64;
 /// and the axes' acceleration and jerk (a stop costs at least that; the neighbours' ramps come on
 /// top). A tiny sharp transition allows so little speed that stopping is quicker; a long gentle
 /// one (lines meeting at a rounding kink) runs at the feed.
-fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<CurveLimits> {
-    let limits = own_limits(h, feed, m);
+fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<f64> {
+    let v_max = own_speed(h, feed, m);
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,
@@ -37,7 +37,7 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<CurveLimits
         limits: slowest_axis(m, feed),
     })
     .duration();
-    (h.length() <= limits.limits.v_max * t_stop).then_some(limits)
+    (h.length() <= v_max * t_stop).then_some(v_max)
 }
 
 /// The limits of transition `h` at `feed` (`piece_limits`).
@@ -45,6 +45,14 @@ fn own_limits(h: &Hermite, feed: f64, m: &Machine) -> CurveLimits {
     let mut cells = Vec::new();
     h.cells(|c| cells.push(c));
     piece_limits(&cells, feed / h.speed_bound().max(1.0), m)
+}
+
+/// The top speed of `own_limits` alone (the cuts are compared by it; only the chosen one's
+/// bands are computed).
+fn own_speed(h: &Hermite, feed: f64, m: &Machine) -> f64 {
+    let mut cells = Vec::new();
+    h.cells(|c| cells.push(c));
+    piece_speed(&cells, feed / h.speed_bound().max(1.0), m)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
@@ -90,13 +98,13 @@ pub(super) fn transition(
     // longer transition is faster through the corner but replaces more of a faster neighbour):
     // so a larger tolerance, which admits every cut a smaller one did, does not keep a costlier
     // one among those it compares.
-    let cost = |d: f64, h: &Hermite, limits: &CurveLimits| {
+    let cost = |d: f64, h: &Hermite, v_max: f64| {
         // Faster than the slower neighbour, it runs at that one's speed (in its chain, or with
         // no room to ramp between): its time at the slowest of the three.
-        let v = limits.limits.v_max.min(sides[0].v).min(sides[1].v);
+        let v = v_max.min(sides[0].v).min(sides[1].v);
         local_cost(d, h.length(), v, &sides)
     };
-    let mut best: Option<(f64, f64, Hermite, CurveLimits)> = None;
+    let mut best: Option<(f64, f64, Hermite)> = None;
     for _ in 0..MAX_SHRINKS {
         if d.is_nan() || d <= MIN_LENGTH {
             break;
@@ -109,25 +117,24 @@ pub(super) fn transition(
         match &best {
             None => {
                 if within() {
-                    let Some(limits) = faster_than_a_stop(&h, feed, m) else {
+                    let Some(v_max) = faster_than_a_stop(&h, feed, m) else {
                         break;
                     };
-                    best = Some((cost(d, &h, &limits), d, h, limits));
+                    best = Some((cost(d, &h, v_max), d, h));
                 }
                 d *= SHRINK;
             }
             Some(b) => {
-                let limits = own_limits(&h, feed, m);
-                let c = cost(d, &h, &limits);
+                let c = cost(d, &h, own_speed(&h, feed, m));
                 if c >= b.0 - SAVING || !within() {
                     break;
                 }
-                best = Some((c, d, h, limits));
+                best = Some((c, d, h));
                 d *= COMPARE_SHRINK;
             }
         }
     }
-    best.map(|(_, d, h, limits)| (d, d, h, limits))
+    best.map(|(_, d, h)| (d, d, h, own_limits(&h, feed, m)))
 }
 
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
