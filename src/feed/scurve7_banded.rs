@@ -217,7 +217,12 @@ fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Ban
         (phases, s)
     };
     let (up, s_up) = ramp(v_in);
-    let (mut down, s_down) = ramp(v_end);
+    // Equal ends: the drop is the rise (built once).
+    let (mut down, s_down) = if v_end == v_in {
+        (up.clone(), s_up)
+    } else {
+        ramp(v_end)
+    };
     down.reverse();
     let ramps = s_up + s_down;
     let cruise = if v_c > 0.0 {

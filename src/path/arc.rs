@@ -152,6 +152,9 @@ const CURVE_SPEED_CEILING: f64 = 1e4;
 const BAND_GRID: f64 = 1.259_921_049_894_873_2; // 2^(1/3)
 /// Share of the curve's speed limit (its budget's end) that its top speed may reach.
 const TOP_SHARE: f64 = 0.985;
+/// Relative margin above the curve's top at which its caps no longer lower it (far above the
+/// few ulps to which `Budget::max_speed` solves a speed).
+const CAP_MARGIN: f64 = 1e-9;
 /// Share of the jerk a band's pair leaves (of what is left at zero tangential acceleration).
 const BAND_JERK_SHARE: f64 = 0.5;
 
@@ -242,9 +245,14 @@ fn top<'a>(cells: &'a [[Vec3; 3]], rho: f64, v_cap: f64, machine: &'a Machine) -
     let frame = Frame::of(cells, rho, v_cap, machine);
     let budget = frame.budget(cells, machine, NO_SHARES);
     let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
-    let v_capped = budget.max_speed(frame.v0).0;
     let v_curve = TOP_SHARE * v_zero;
-    let v_top = v_curve.min(v_capped);
+    // The speed within the caps is the cap or the budget's end, each as solved to a few ulps:
+    // with the caps well above the curve's top, it is above that top too, and not solved.
+    let v_top = if frame.v0 >= v_curve * (1.0 + CAP_MARGIN) {
+        v_curve
+    } else {
+        v_curve.min(budget.max_speed(frame.v0).0)
+    };
     (v_top > 0.0 && v_top.is_finite()).then_some(Top {
         budget,
         v_curve,
