@@ -19,7 +19,7 @@
 //! cruise, ramp as in scurve7.rs; the peak, the largest entry and exit are found by regula falsi on
 //! the ramp distance (increasing in the far speed), bounded.
 
-use super::bands::Banded;
+use super::bands::{Banded, MAX_BANDS};
 use super::roots::falsi_from;
 use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
 use super::{FeedLaw, Kin};
@@ -208,7 +208,8 @@ fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Ban
     // ramp's distance is summed on the way, as `rise_time_distance` sums it (no pieces when the
     // ramp is none: its distance is 0 either way).
     let ramp = |from: f64| {
-        let (mut phases, mut s) = (Vec::new(), 0.0);
+        // At most a rise and a plateau per band, each cut once where the envelopes cross.
+        let (mut phases, mut s) = (Vec::with_capacity(4 * (MAX_BANDS + 1)), 0.0);
         rise(b, from, v_c, |p| {
             let (tau, j, ds) = p.run();
             phases.push((tau, j));

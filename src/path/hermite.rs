@@ -14,7 +14,7 @@ use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
 /// Sub-intervals of the Taylor bound (guaranteed for any number; more is tighter).
-const BOUND_PIECES: usize = 8;
+pub(super) const BOUND_PIECES: usize = 8;
 /// Sub-intervals of the parameter speed's bound.
 const SPEED_PIECES: usize = 8;
 

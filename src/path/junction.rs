@@ -6,7 +6,7 @@
 //! picks among them, so a larger tolerance does not pick a slower one.
 
 use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
-use super::hermite::Hermite;
+use super::hermite::{Hermite, BOUND_PIECES};
 use super::smooth::{jet_at, joined_loss, Span};
 use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
 use super::{constant_speed_limit, line_limits, slowest_axis};
@@ -42,7 +42,7 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<f64> {
 
 /// The limits of transition `h` at `feed` (`piece_limits`).
 fn own_limits(h: &Hermite, feed: f64, m: &Machine) -> CurveLimits {
-    let mut cells = Vec::new();
+    let mut cells = Vec::with_capacity(BOUND_PIECES);
     h.cells(|c| cells.push(c));
     piece_limits(&cells, feed / h.speed_bound().max(1.0), m)
 }
@@ -50,7 +50,7 @@ fn own_limits(h: &Hermite, feed: f64, m: &Machine) -> CurveLimits {
 /// The top speed of `own_limits` alone (the cuts are compared by it; only the chosen one's
 /// bands are computed).
 fn own_speed(h: &Hermite, feed: f64, m: &Machine) -> f64 {
-    let mut cells = Vec::new();
+    let mut cells = Vec::with_capacity(BOUND_PIECES);
     h.cells(|c| cells.push(c));
     piece_speed(&cells, feed / h.speed_bound().max(1.0), m)
 }
@@ -165,7 +165,7 @@ fn side(span: &mut Span, feed: f64, m: &Machine) -> Side {
         }
         _ => {
             let l = span.own.get_or_insert_with(|| {
-                let mut cells = Vec::new();
+                let mut cells = Vec::with_capacity(BOUND_PIECES);
                 piece.curve.cells(|c| cells.push(c));
                 piece_limits(&cells, feed / sigma, m)
             });

@@ -20,7 +20,7 @@
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
 
 use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
-use super::hermite::{bezier, Hermite, Jet};
+use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
 use super::junction::transition;
 use super::source_map;
 use super::tolerance::{COLLINEAR_SIN2, JOINT_D1_EPS, JOINT_D2_EPS, KNOT_SLACK, MIN_LENGTH};
@@ -403,7 +403,7 @@ impl SmoothBuilder {
         out: &mut Vec<PathBlock>,
     ) {
         if piece.length() > MIN_LENGTH {
-            let mut cells = Vec::new();
+            let mut cells = Vec::with_capacity(BOUND_PIECES);
             piece.curve.cells(|c| cells.push(c));
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
