@@ -102,6 +102,7 @@ impl Budget<'_> {
     }
 
     /// (axis, [|d1|, |d2|, |d3|]) of each cell and axis that moves (|d1| above `NEGLIGIBLE`).
+    #[inline(always)]
     fn each_moving(&self, mut take: impl FnMut(&AxisLimits, Vec3)) {
         for cell in self.cells {
             for (i, ax) in self.machine.axes.iter().enumerate() {
