@@ -314,8 +314,161 @@ pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Plane;
+    use crate::geometry::{norm, Plane};
     use crate::si::MM;
+
+    /// Deterministic xorshift64* in [0, 1).
+    fn unit(state: &mut u64) -> f64 {
+        *state ^= *state >> 12;
+        *state ^= *state << 25;
+        *state ^= *state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// `curve_bands` as it was before its pairs ran in one pass (each pair by three scalar passes
+    /// over the cells with `f64::min`, both speed solves always): the reference for bit equality.
+    fn bands_by_scalar_passes(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, m: &Machine) -> (Limits, Bands) {
+        let frame = Frame::of(cells, rho, v_cap, m);
+        let budget = frame.budget(cells, m, NO_SHARES);
+        let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
+        let v_curve = TOP_SHARE * v_zero;
+        let v_top = v_curve.min(budget.max_speed(frame.v0).0);
+        let plain = || (curve_limits(cells, rho, v_cap, m, NO_SHARES), Bands::default());
+        if v_top <= 0.0 || !v_top.is_finite() {
+            return plain();
+        }
+        let min_over = |f: &dyn Fn(&crate::config::AxisLimits, [f64; 3]) -> Option<f64>, start: f64| {
+            let mut x = start;
+            for cell in cells {
+                for (i, ax) in m.axes.iter().enumerate() {
+                    let d = [cell[0][i], cell[1][i], cell[2][i]];
+                    if d[0] > NEGLIGIBLE {
+                        if let Some(y) = f(ax, d) {
+                            x = x.min(y);
+                        }
+                    }
+                }
+            }
+            x
+        };
+        let pair = |v: f64| {
+            let a_free = min_over(
+                &|ax, [d1, d2, _]| Some((ax.max_acceleration - d2 * v * v) / d1),
+                budget.a_cap,
+            );
+            let j0 = min_over(
+                &|ax, [d1, _, d3]| Some((ax.max_jerk - d3 * v * v * v) / d1),
+                budget.j_free,
+            );
+            let j_share = BAND_JERK_SHARE * j0;
+            let a_jerk = min_over(
+                &|ax, [d1, d2, d3]| {
+                    (d2 * v > NEGLIGIBLE)
+                        .then(|| (ax.max_jerk - d3 * v * v * v - d1 * j_share) / (3.0 * d2 * v))
+                },
+                budget.a_cap,
+            );
+            let a_reach = (2.0 * v * j0.max(0.0)).sqrt();
+            let jerk_with = |a: f64| {
+                min_over(
+                    &|ax, [d1, d2, d3]| Some((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a) / d1),
+                    budget.j_free,
+                )
+            };
+            let (reserved, j) = if a_jerk <= a_reach {
+                (a_jerk, jerk_with(a_jerk).max(j_share))
+            } else {
+                (a_reach, jerk_with(a_reach))
+            };
+            (a_free.min(reserved), j)
+        };
+        let above = grid_at_or_above(v_top);
+        let mut levels = Vec::new();
+        let mut v = above;
+        for _ in 0..MAX_BANDS {
+            v /= BAND_GRID;
+            if v < v_top {
+                let (a, j) = pair(v);
+                levels.push(Band {
+                    v_top: v,
+                    a_max: a,
+                    j_max: j,
+                });
+            }
+        }
+        let (a, j) = pair(above.min(v_curve).max(v_top));
+        if a <= 0.0 || j <= 0.0 {
+            return plain();
+        }
+        let limits = Limits {
+            v_max: v_top,
+            a_max: a,
+            j_max: j,
+            snap_max: m.max_snap,
+        };
+        (limits, Bands::below(&limits, &levels))
+    }
+
+    /// The band pairs in one pass, the capped speed solved only near the top and the top speed
+    /// alone (`curve_top_speed`) give what the scalar passes give, bit for bit, on 400 random
+    /// curves (cells with zero and non-zero bounds, random axis limits) and caps from far below
+    /// the top to above it, at and around `CAP_MARGIN`.
+    #[test]
+    fn band_pairs_equal_the_scalar_passes() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut banded = 0;
+        for _ in 0..400 {
+            let mut m = Machine::default();
+            for ax in m.axes.iter_mut() {
+                ax.max_acceleration = 0.5 + 10.0 * unit(&mut s);
+                ax.max_jerk = 5.0 + 200.0 * unit(&mut s);
+            }
+            let n = 1 + (unit(&mut s) * 10.0) as usize;
+            let cells: Vec<[Vec3; 3]> = (0..n)
+                .map(|_| {
+                    std::array::from_fn(|k| {
+                        std::array::from_fn(|_| {
+                            let x = unit(&mut s);
+                            if x < 0.15 {
+                                0.0
+                            } else {
+                                (10f64).powf(2.0 * x - 1.5 + k as f64)
+                            }
+                        })
+                    })
+                })
+                .collect();
+            let k = norm(max_bounds(&cells)[1]);
+            let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
+            let top = bands_by_scalar_passes(&cells, rho, f64::INFINITY, &m).0.v_max;
+            for cap in [
+                f64::INFINITY,
+                0.3 * top,
+                top,
+                top * (1.0 + 5e-10),
+                top * (1.0 + 2e-9),
+                2.0 * top,
+            ] {
+                let ours = curve_bands(&cells, rho, cap, &m);
+                let reference = bands_by_scalar_passes(&cells, rho, cap, &m);
+                assert_eq!(format!("{ours:?}"), format!("{reference:?}"), "cap {cap}");
+                assert_eq!(ours.0.v_max.to_bits(), reference.0.v_max.to_bits());
+                let levels = |b: &Bands| {
+                    b.levels()
+                        .iter()
+                        .map(|l| [l.v_top, l.a_max, l.j_max].map(f64::to_bits))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(levels(&ours.1), levels(&reference.1));
+                assert_eq!(
+                    curve_top_speed(&cells, rho, cap, &m).to_bits(),
+                    ours.0.v_max.to_bits()
+                );
+                banded += usize::from(!ours.1.is_empty());
+            }
+        }
+        assert!(banded > 1000, "too few curves with bands: {banded}");
+    }
 
     #[test]
     fn chord_error_limit_r10_delta1um() {
