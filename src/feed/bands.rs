@@ -78,12 +78,14 @@ impl Bands {
                     && b.j_max.is_finite()
             })
             .collect();
-        kept.sort_by(|x, y| x.v_top.total_cmp(&y.v_top));
-        kept.dedup_by(|a, b| a.v_top == b.v_top);
-        let skip = kept.len().saturating_sub(MAX_BANDS);
-        Bands {
-            levels: kept.split_off(skip),
+        // Curves list their levels by increasing speed already (path/arc.rs): no sort then.
+        if !kept.windows(2).all(|w| w[0].v_top < w[1].v_top) {
+            kept.sort_by(|x, y| x.v_top.total_cmp(&y.v_top));
+            kept.dedup_by(|a, b| a.v_top == b.v_top);
         }
+        let skip = kept.len().saturating_sub(MAX_BANDS);
+        kept.drain(..skip);
+        Bands { levels: kept }
     }
 
     pub fn len(&self) -> usize {

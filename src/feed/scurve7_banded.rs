@@ -25,49 +25,9 @@ use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
 use super::{FeedLaw, Kin};
 use serde::{Deserialize, Serialize};
 
-/// Pieces at most in an envelope: a rise and a plateau per band.
-const MAX_PIECES: usize = 2 * (MAX_BANDS + 1);
-
-/// a² = alpha + beta·v on [v0, v1] (beta = 2·jerk; 0 on a plateau).
-#[derive(Clone, Copy, Debug, Default)]
-struct Piece {
-    v0: f64,
-    v1: f64,
-    alpha: f64,
-    beta: f64,
-}
-
-impl Piece {
-    fn a2(&self, v: f64) -> f64 {
-        (self.alpha + self.beta * v).max(0.0)
-    }
-}
-
-/// A fixed-capacity list of pieces, by increasing speed.
-#[derive(Clone, Copy, Debug)]
-struct Pieces {
-    n: usize,
-    p: [Piece; MAX_PIECES],
-}
-
-impl Pieces {
-    fn new() -> Pieces {
-        Pieces {
-            n: 0,
-            p: [Piece::default(); MAX_PIECES],
-        }
-    }
-    fn push(&mut self, piece: Piece) {
-        debug_assert!(self.n < MAX_PIECES, "room for every piece");
-        if piece.v1 > piece.v0 && self.n < MAX_PIECES {
-            self.p[self.n] = piece;
-            self.n += 1;
-        }
-    }
-    fn as_slice(&self) -> &[Piece] {
-        &self.p[..self.n]
-    }
-}
+mod envelope;
+pub use envelope::Rise;
+use envelope::{rise, rise_time_distance};
 
 /// One phase of constant jerk, with the state at its start.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -80,165 +40,10 @@ pub struct Phase {
     pub a0: f64,
 }
 
-/// A band of the ramp: speeds [floor, top] with acceleration `a` and jerk `j`.
-#[derive(Clone, Copy, Debug)]
-struct Level {
-    floor: f64,
-    top: f64,
-    a: f64,
-    j: f64,
-}
-
-/// The bands crossed between `lo` and `hi`, each with its speeds clipped to [lo, hi].
-fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
-    let mut out = [Level {
-        floor: 0.0,
-        top: 0.0,
-        a: 0.0,
-        j: 0.0,
-    }; MAX_BANDS + 1];
-    let mut n = 0;
-    // Band k as `Banded::limits`, `floor_of` and `top_of` give it, read in one walk: the band
-    // levels, then the block's own limits above them (no top).
-    let bands = b.bands.levels().iter().map(|l| (l.v_top, l.a_max, l.j_max));
-    let mut floor_k: f64 = 0.0;
-    for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
-        let (floor, top) = (floor_k.max(lo), top_k.min(hi));
-        if top > floor && n < out.len() {
-            out[n] = Level { floor, top, a, j };
-            n += 1;
-        }
-        if top_k >= hi {
-            break;
-        }
-        floor_k = top_k;
-    }
-    (out, n)
-}
-
-/// The speed rise lo → hi as constant-jerk pieces in the phase plane, in order, to `take`
-/// (see the module comment).
-fn rise(b: &Banded, lo: f64, hi: f64, mut take: impl FnMut(&Piece)) {
-    let (levels, n) = levels(b, lo, hi);
-    let levels = &levels[..n];
-    // Forward envelope: a² grows by 2·J per unit of speed up to each band's A (cut to it at the
-    // band's floor where the band below allowed more).
-    let mut fwd = Pieces::new();
-    let mut f: f64 = 0.0;
-    for l in levels {
-        f = f.min(l.a);
-        let reach = l.floor + (l.a * l.a - f * f) / (2.0 * l.j);
-        let end = reach.min(l.top);
-        fwd.push(Piece {
-            v0: l.floor,
-            v1: end,
-            alpha: f * f - 2.0 * l.j * l.floor,
-            beta: 2.0 * l.j,
-        });
-        if end < l.top {
-            fwd.push(Piece {
-                v0: end,
-                v1: l.top,
-                alpha: l.a * l.a,
-                beta: 0.0,
-            });
-            f = l.a;
-        } else {
-            f = (f * f + 2.0 * l.j * (l.top - l.floor)).sqrt();
-        }
-    }
-    // Backward envelope: the same from hi down (pieces by decreasing speed).
-    let mut bwd = Pieces::new();
-    let mut g: f64 = 0.0;
-    for l in levels.iter().rev() {
-        let g0 = g.min(l.a);
-        let reach = l.top - (l.a * l.a - g0 * g0) / (2.0 * l.j);
-        let start = reach.max(l.floor);
-        bwd.push(Piece {
-            v0: start,
-            v1: l.top,
-            alpha: g0 * g0 + 2.0 * l.j * l.top,
-            beta: -2.0 * l.j,
-        });
-        if start > l.floor {
-            bwd.push(Piece {
-                v0: l.floor,
-                v1: start,
-                alpha: l.a * l.a,
-                beta: 0.0,
-            });
-            g = l.a;
-        } else {
-            g = (g0 * g0 + 2.0 * l.j * (l.top - l.floor)).sqrt();
-        }
-    }
-    let (fwd, bwd) = (fwd.as_slice(), bwd.as_slice());
-    // min(F, B) over the common refinement of both: on each stretch both are a² linear in v, so
-    // the smaller is the one below at its ends, the stretch split where they cross.
-    let (mut i, mut k) = (0, bwd.len());
-    while i < fwd.len() && k > 0 {
-        let (fp, bp) = (&fwd[i], &bwd[k - 1]);
-        let (u0, u1) = (fp.v0.max(bp.v0), fp.v1.min(bp.v1));
-        if u1 > u0 {
-            let d = |u: f64| (fp.alpha - bp.alpha) + (fp.beta - bp.beta) * u;
-            let (d0, d1) = (d(u0), d(u1));
-            let piece = |x0: f64, x1: f64, forward: bool| Piece {
-                v0: x0,
-                v1: x1,
-                ..*(if forward { fp } else { bp })
-            };
-            if (d0 <= 0.0) == (d1 <= 0.0) {
-                take(&piece(u0, u1, d0 + d1 <= 0.0));
-            } else {
-                let root = (u0 - d0 * (u1 - u0) / (d1 - d0)).clamp(u0, u1);
-                take(&piece(u0, root, d0 <= 0.0));
-                take(&piece(root, u1, d1 <= 0.0));
-            }
-        }
-        if fp.v1 <= bp.v1 {
-            i += 1;
-        } else {
-            k -= 1;
-        }
-    }
-}
-
-/// Duration and jerk of each piece as a phase.
-fn phase_of(p: &Piece) -> (f64, f64) {
-    let (a0, a1) = (p.a2(p.v0).sqrt(), p.a2(p.v1).sqrt());
-    if p.beta == 0.0 {
-        let a = a0.max(f64::MIN_POSITIVE);
-        ((p.v1 - p.v0) / a, 0.0)
-    } else {
-        let j = 0.5 * p.beta;
-        (((a1 - a0) / j).max(0.0), j)
-    }
-}
-
-/// Time and distance of the rise lo → hi (the drop hi → lo takes the same).
-fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
-    if hi <= lo {
-        return (0.0, 0.0);
-    }
-    let (mut t, mut s) = (0.0, 0.0);
-    rise(b, lo, hi, |p| {
-        let (tau, j) = phase_of(p);
-        t += tau;
-        s += distance_of(p, tau, j);
-    });
-    (t, s)
-}
-
 /// Time and distance of the fastest speed change v1 → v2 under the bands.
 pub fn ramp(b: &Banded, v1: f64, v2: f64) -> (f64, f64) {
     let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
     rise_time_distance(b, lo, hi)
-}
-
-/// Distance of piece `p` run as a phase of `tau` with jerk `j` (`phase_of`).
-fn distance_of(p: &Piece, tau: f64, j: f64) -> f64 {
-    let a0 = p.a2(p.v0).sqrt();
-    tau * (p.v0 + tau * (0.5 * a0 + tau * j / 6.0))
 }
 
 /// Time of the fastest speed change v1 → v2 under the bands (with none, scurve7's).
@@ -257,33 +62,40 @@ pub fn ramp_distance(b: &Banded, v1: f64, v2: f64) -> f64 {
 /// the distance grows with v. Bracketed by the block's top speed first (the look-ahead seldom
 /// needs more), else by doubling; then regula falsi on the distance as evaluated.
 pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
-    let v0 = v0.max(0.0);
-    let length = length.max(0.0);
-    let fits = |v: f64| {
-        let d = ramp_distance(b, v0, v);
-        (d <= length, d - length)
-    };
-    // The bracket's ends with the distances already solved there, for the regula falsi.
-    let top = b.top.v_max;
-    let (mut good, mut g_good) = (v0, fits(v0).1);
-    if top.is_finite() && top > v0 {
-        let (fit, g_top) = fits(top);
-        if !fit {
-            return falsi_from(good, g_good, top, g_top, |v| fits(v).1);
+    Rise::from(b, v0.max(0.0)).max_speed(length)
+}
+
+impl Rise<'_> {
+    /// `max_speed` from this rise's speed: every ramp from it shares its forward envelope.
+    pub fn max_speed(&self, length: f64) -> f64 {
+        let v0 = self.lo();
+        let length = length.max(0.0);
+        let fits = |v: f64| {
+            let d = self.time_distance(v).1;
+            (d <= length, d - length)
+        };
+        // The bracket's ends with the distances already solved there, for the regula falsi.
+        let top = self.banded().top.v_max;
+        let (mut good, mut g_good) = (v0, fits(v0).1);
+        if top.is_finite() && top > v0 {
+            let (fit, g_top) = fits(top);
+            if !fit {
+                return falsi_from(good, g_good, top, g_top, |v| fits(v).1);
+            }
+            (good, g_good) = (top, g_top);
         }
-        (good, g_good) = (top, g_top);
-    }
-    let mut step = good.max(BRACKET_START);
-    for _ in 0..BRACKET_DOUBLINGS {
-        let hi = good + step;
-        let (fit, g_hi) = fits(hi);
-        if !fit {
-            return falsi_from(good, g_good, hi, g_hi, |v| fits(v).1);
+        let mut step = good.max(BRACKET_START);
+        for _ in 0..BRACKET_DOUBLINGS {
+            let hi = good + step;
+            let (fit, g_hi) = fits(hi);
+            if !fit {
+                return falsi_from(good, g_good, hi, g_hi, |v| fits(v).1);
+            }
+            (good, g_good) = (hi, g_hi);
+            step *= 2.0;
         }
-        (good, g_good) = (hi, g_hi);
-        step *= 2.0;
+        good
     }
-    good
 }
 
 /// Largest exit x ≤ `target` with a ramp from `v_in` within `length`, when a stop fits (0 if
@@ -365,7 +177,13 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
         }
     } else {
         let v_hi = v_in.max(v_out);
-        let total = |v: f64| d(v_in, v) + d(v, v_out);
+        // Above both ends, each ramp rises from its end: the forward envelopes built once (one
+        // when the ends are equal, the two ramps then the same sum).
+        let (up, down) = (Rise::from(b, v_in), (v_out != v_in).then(|| Rise::from(b, v_out)));
+        let total = |v: f64| {
+            let d_up = up.time_distance(v).1;
+            d_up + down.as_ref().map_or(d_up, |r| r.time_distance(v).1)
+        };
         let v_c = if v_feed <= v_hi {
             v_feed.max(v_hi)
         } else {
@@ -390,16 +208,22 @@ fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Ban
     // ramp's distance is summed on the way, as `rise_time_distance` sums it (no pieces when the
     // ramp is none: its distance is 0 either way).
     let ramp = |from: f64| {
-        let (mut phases, mut s) = (Vec::new(), 0.0);
+        // At most a rise and a plateau per band, each cut once where the envelopes cross.
+        let (mut phases, mut s) = (Vec::with_capacity(4 * (MAX_BANDS + 1)), 0.0);
         rise(b, from, v_c, |p| {
-            let (tau, j) = phase_of(p);
+            let (tau, j, ds) = p.run();
             phases.push((tau, j));
-            s += distance_of(p, tau, j);
+            s += ds;
         });
         (phases, s)
     };
     let (up, s_up) = ramp(v_in);
-    let (mut down, s_down) = ramp(v_end);
+    // Equal ends: the drop is the rise (built once).
+    let (mut down, s_down) = if v_end == v_in {
+        (up.clone(), s_up)
+    } else {
+        ramp(v_end)
+    };
     down.reverse();
     let ramps = s_up + s_down;
     let cruise = if v_c > 0.0 {

@@ -25,8 +25,11 @@ impl Line {
     }
     /// Point at arc length s; s ≥ length gives the programmed end exactly.
     pub fn eval(&self, s: f64) -> Geo {
-        let u = self.direction();
-        let p = if s >= self.length() {
+        // `direction` and `length` with the one square root they share.
+        let d = sub(self.end, self.start);
+        let l = norm(d);
+        let u = if l > 0.0 { scale(d, 1.0 / l) } else { [0.0; 3] };
+        let p = if s >= l {
             self.end
         } else {
             add(self.start, scale(u, s))

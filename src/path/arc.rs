@@ -138,6 +138,11 @@ impl Frame {
     }
 }
 
+/// The whole budget, none kept for the tangential law: where the bands are measured from.
+const NO_SHARES: Shares = Shares {
+    a_cap: 1.0,
+    tangential: 0.0,
+};
 /// A speed above any a curve allows (m/s): where the search for its budget's end starts.
 const CURVE_SPEED_CEILING: f64 = 1e4;
 /// Band tops lie on one grid of speeds for every curve, q^n m/s (n whole), the `MAX_BANDS`
@@ -147,6 +152,9 @@ const CURVE_SPEED_CEILING: f64 = 1e4;
 const BAND_GRID: f64 = 1.259_921_049_894_873_2; // 2^(1/3)
 /// Share of the curve's speed limit (its budget's end) that its top speed may reach.
 const TOP_SHARE: f64 = 0.985;
+/// Relative margin above the curve's top at which its caps no longer lower it (far above the
+/// few ulps to which `Budget::max_speed` solves a speed).
+const CAP_MARGIN: f64 = 1e-9;
 /// Share of the jerk a band's pair leaves (of what is left at zero tangential acceleration).
 const BAND_JERK_SHARE: f64 = 0.5;
 
@@ -178,48 +186,37 @@ fn grid_at_or_above(v: f64) -> f64 {
 /// curve itself limits it), so a band's pair does not depend on the caps: a higher cap leaves
 /// every band as it was and adds speed above.
 pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (Limits, Bands) {
-    let frame = Frame::of(cells, rho, v_cap, machine);
-    let zero = Shares {
-        a_cap: 1.0,
-        tangential: 0.0,
+    let Some(Top {
+        budget,
+        v_curve,
+        v_top,
+    }) = top(cells, rho, v_cap, machine)
+    else {
+        return (
+            curve_limits(cells, rho, v_cap, machine, NO_SHARES),
+            Bands::default(),
+        );
     };
-    let budget = frame.budget(cells, machine, zero);
-    let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
-    let v_capped = budget.max_speed(frame.v0).0;
-    let v_curve = TOP_SHARE * v_zero;
-    let v_top = v_curve.min(v_capped);
-    let pair = |v: f64| {
-        let (a_free, j0) = budget.free_at(v);
-        let j_share = BAND_JERK_SHARE * j0;
-        let a_jerk = budget.acceleration_leaving(v, j_share);
-        let a_reach = (2.0 * v * j0.max(0.0)).sqrt();
-        // Reserving for a_jerk leaves exactly j_share (its cell binds); for less, what is left.
-        let (reserved, j) = if a_jerk <= a_reach {
-            (a_jerk, budget.jerk_with(v, a_jerk).max(j_share))
-        } else {
-            (a_reach, budget.jerk_with(v, a_reach))
-        };
-        (a_free.min(reserved), j)
-    };
-    if v_top <= 0.0 || !v_top.is_finite() {
-        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
-    }
-    // The grid speed at or just above the top, and the ones below it.
+    // The grid speeds below the top, stepped down from the one at or just above it, by
+    // increasing speed as `Bands::below` keeps them, and last the speed of the top's pair.
     let above = grid_at_or_above(v_top);
-    let mut levels = Vec::with_capacity(MAX_BANDS);
+    let mut speeds = [0.0; MAX_BANDS + 1];
     let mut v = above;
-    for _ in 0..MAX_BANDS {
+    for g in speeds[..MAX_BANDS].iter_mut().rev() {
         v /= BAND_GRID;
-        if v < v_top {
-            let (a, j) = pair(v);
-            levels.push(Band {
-                v_top: v,
-                a_max: a,
-                j_max: j,
-            });
-        }
+        *g = v;
     }
-    let (a, j) = pair(above.min(v_curve).max(v_top));
+    speeds[MAX_BANDS] = above.min(v_curve).max(v_top);
+    let (a, j) = band_pairs(&budget, &speeds);
+    let levels: Vec<Band> = (0..MAX_BANDS)
+        .filter(|&k| speeds[k] < v_top)
+        .map(|k| Band {
+            v_top: speeds[k],
+            a_max: a[k],
+            j_max: j[k],
+        })
+        .collect();
+    let (a, j) = (a[MAX_BANDS], j[MAX_BANDS]);
     let limits = Limits {
         v_max: v_top,
         a_max: a,
@@ -227,9 +224,78 @@ pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine)
         snap_max: machine.max_snap,
     };
     if a <= 0.0 || j <= 0.0 {
-        return (curve_limits(cells, rho, v_cap, machine, zero), Bands::default());
+        return (
+            curve_limits(cells, rho, v_cap, machine, NO_SHARES),
+            Bands::default(),
+        );
     }
     (limits, Bands::below(&limits, &levels))
+}
+
+/// Where a curve's bands start (`curve_bands`): its budget with no shares kept, the speed its
+/// top may reach (`TOP_SHARE` of where the budget ends) and its top speed within the caps.
+struct Top<'a> {
+    budget: Budget<'a>,
+    v_curve: f64,
+    v_top: f64,
+}
+
+/// The curve's `Top`, or None where it has no budget (its plain limits then).
+fn top<'a>(cells: &'a [[Vec3; 3]], rho: f64, v_cap: f64, machine: &'a Machine) -> Option<Top<'a>> {
+    let frame = Frame::of(cells, rho, v_cap, machine);
+    let budget = frame.budget(cells, machine, NO_SHARES);
+    let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
+    let v_curve = TOP_SHARE * v_zero;
+    // The speed within the caps is the cap or the budget's end, each as solved to a few ulps:
+    // with the caps well above the curve's top, it is above that top too, and not solved.
+    let v_top = if frame.v0 >= v_curve * (1.0 + CAP_MARGIN) {
+        v_curve
+    } else {
+        v_curve.min(budget.max_speed(frame.v0).0)
+    };
+    (v_top > 0.0 && v_top.is_finite()).then_some(Top {
+        budget,
+        v_curve,
+        v_top,
+    })
+}
+
+/// The top speed of `curve_bands`' limits alone: the top band's pair decides whether the curve
+/// has bands (the pair of each other band is not needed for it).
+pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> f64 {
+    let plain = || curve_limits(cells, rho, v_cap, machine, NO_SHARES).v_max;
+    let Some(t) = top(cells, rho, v_cap, machine) else {
+        return plain();
+    };
+    let above = grid_at_or_above(t.v_top);
+    let (a, j) = band_pairs(&t.budget, &[above.min(t.v_curve).max(t.v_top)]);
+    if a[0] <= 0.0 || j[0] <= 0.0 {
+        plain()
+    } else {
+        t.v_top
+    }
+}
+
+/// The pair (A, J) a band ending at each speed of `v` takes (`curve_bands`): the acceleration
+/// reserved for the jerk terms is the one leaving `BAND_JERK_SHARE` of J(v, 0), at most about
+/// the most a ramp within the band reaches, sqrt(2·v·J(v, 0)).
+fn band_pairs<const N: usize>(budget: &Budget, v: &[f64; N]) -> ([f64; N], [f64; N]) {
+    let (a_free, j0) = budget.free_at(v);
+    let j_share = j0.map(|j| BAND_JERK_SHARE * j);
+    let a_jerk = budget.acceleration_leaving(v, &j_share);
+    let a_reach: [f64; N] = std::array::from_fn(|k| (2.0 * v[k] * j0[k].max(0.0)).sqrt());
+    // Reserving for a_jerk leaves exactly j_share (its cell binds); for less, what is left.
+    let reserved: [f64; N] = std::array::from_fn(|k| a_jerk[k].min(a_reach[k]));
+    let left = budget.jerk_with(v, &reserved);
+    let a = std::array::from_fn(|k| a_free[k].min(reserved[k]));
+    let j = std::array::from_fn(|k| {
+        if a_jerk[k] <= a_reach[k] {
+            left[k].max(j_share[k])
+        } else {
+            left[k]
+        }
+    });
+    (a, j)
 }
 
 /// Largest per-axis bounds over the cells.
@@ -248,8 +314,161 @@ pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Plane;
+    use crate::geometry::{norm, Plane};
     use crate::si::MM;
+
+    /// Deterministic xorshift64* in [0, 1).
+    fn unit(state: &mut u64) -> f64 {
+        *state ^= *state >> 12;
+        *state ^= *state << 25;
+        *state ^= *state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// `curve_bands` as it was before its pairs ran in one pass (each pair by three scalar passes
+    /// over the cells with `f64::min`, both speed solves always): the reference for bit equality.
+    fn bands_by_scalar_passes(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, m: &Machine) -> (Limits, Bands) {
+        let frame = Frame::of(cells, rho, v_cap, m);
+        let budget = frame.budget(cells, m, NO_SHARES);
+        let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
+        let v_curve = TOP_SHARE * v_zero;
+        let v_top = v_curve.min(budget.max_speed(frame.v0).0);
+        let plain = || (curve_limits(cells, rho, v_cap, m, NO_SHARES), Bands::default());
+        if v_top <= 0.0 || !v_top.is_finite() {
+            return plain();
+        }
+        let min_over = |f: &dyn Fn(&crate::config::AxisLimits, [f64; 3]) -> Option<f64>, start: f64| {
+            let mut x = start;
+            for cell in cells {
+                for (i, ax) in m.axes.iter().enumerate() {
+                    let d = [cell[0][i], cell[1][i], cell[2][i]];
+                    if d[0] > NEGLIGIBLE {
+                        if let Some(y) = f(ax, d) {
+                            x = x.min(y);
+                        }
+                    }
+                }
+            }
+            x
+        };
+        let pair = |v: f64| {
+            let a_free = min_over(
+                &|ax, [d1, d2, _]| Some((ax.max_acceleration - d2 * v * v) / d1),
+                budget.a_cap,
+            );
+            let j0 = min_over(
+                &|ax, [d1, _, d3]| Some((ax.max_jerk - d3 * v * v * v) / d1),
+                budget.j_free,
+            );
+            let j_share = BAND_JERK_SHARE * j0;
+            let a_jerk = min_over(
+                &|ax, [d1, d2, d3]| {
+                    (d2 * v > NEGLIGIBLE)
+                        .then(|| (ax.max_jerk - d3 * v * v * v - d1 * j_share) / (3.0 * d2 * v))
+                },
+                budget.a_cap,
+            );
+            let a_reach = (2.0 * v * j0.max(0.0)).sqrt();
+            let jerk_with = |a: f64| {
+                min_over(
+                    &|ax, [d1, d2, d3]| Some((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a) / d1),
+                    budget.j_free,
+                )
+            };
+            let (reserved, j) = if a_jerk <= a_reach {
+                (a_jerk, jerk_with(a_jerk).max(j_share))
+            } else {
+                (a_reach, jerk_with(a_reach))
+            };
+            (a_free.min(reserved), j)
+        };
+        let above = grid_at_or_above(v_top);
+        let mut levels = Vec::new();
+        let mut v = above;
+        for _ in 0..MAX_BANDS {
+            v /= BAND_GRID;
+            if v < v_top {
+                let (a, j) = pair(v);
+                levels.push(Band {
+                    v_top: v,
+                    a_max: a,
+                    j_max: j,
+                });
+            }
+        }
+        let (a, j) = pair(above.min(v_curve).max(v_top));
+        if a <= 0.0 || j <= 0.0 {
+            return plain();
+        }
+        let limits = Limits {
+            v_max: v_top,
+            a_max: a,
+            j_max: j,
+            snap_max: m.max_snap,
+        };
+        (limits, Bands::below(&limits, &levels))
+    }
+
+    /// The band pairs in one pass, the capped speed solved only near the top and the top speed
+    /// alone (`curve_top_speed`) give what the scalar passes give, bit for bit, on 400 random
+    /// curves (cells with zero and non-zero bounds, random axis limits) and caps from far below
+    /// the top to above it, at and around `CAP_MARGIN`.
+    #[test]
+    fn band_pairs_equal_the_scalar_passes() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut banded = 0;
+        for _ in 0..400 {
+            let mut m = Machine::default();
+            for ax in m.axes.iter_mut() {
+                ax.max_acceleration = 0.5 + 10.0 * unit(&mut s);
+                ax.max_jerk = 5.0 + 200.0 * unit(&mut s);
+            }
+            let n = 1 + (unit(&mut s) * 10.0) as usize;
+            let cells: Vec<[Vec3; 3]> = (0..n)
+                .map(|_| {
+                    std::array::from_fn(|k| {
+                        std::array::from_fn(|_| {
+                            let x = unit(&mut s);
+                            if x < 0.15 {
+                                0.0
+                            } else {
+                                (10f64).powf(2.0 * x - 1.5 + k as f64)
+                            }
+                        })
+                    })
+                })
+                .collect();
+            let k = norm(max_bounds(&cells)[1]);
+            let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
+            let top = bands_by_scalar_passes(&cells, rho, f64::INFINITY, &m).0.v_max;
+            for cap in [
+                f64::INFINITY,
+                0.3 * top,
+                top,
+                top * (1.0 + 5e-10),
+                top * (1.0 + 2e-9),
+                2.0 * top,
+            ] {
+                let ours = curve_bands(&cells, rho, cap, &m);
+                let reference = bands_by_scalar_passes(&cells, rho, cap, &m);
+                assert_eq!(format!("{ours:?}"), format!("{reference:?}"), "cap {cap}");
+                assert_eq!(ours.0.v_max.to_bits(), reference.0.v_max.to_bits());
+                let levels = |b: &Bands| {
+                    b.levels()
+                        .iter()
+                        .map(|l| [l.v_top, l.a_max, l.j_max].map(f64::to_bits))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(levels(&ours.1), levels(&reference.1));
+                assert_eq!(
+                    curve_top_speed(&cells, rho, cap, &m).to_bits(),
+                    ours.0.v_max.to_bits()
+                );
+                banded += usize::from(!ours.1.is_empty());
+            }
+        }
+        assert!(banded > 1000, "too few curves with bands: {banded}");
+    }
 
     #[test]
     fn chord_error_limit_r10_delta1um() {

@@ -4,7 +4,7 @@
 //! constraint is monotone in v and solved in closed form.
 
 use super::tolerance::{FIT_STEPS, NEGLIGIBLE, SHARE_SLACK};
-use crate::config::Machine;
+use crate::config::{AxisLimits, Machine};
 use crate::feed::roots::cubic_pos;
 use crate::Vec3;
 
@@ -55,51 +55,63 @@ impl Budget<'_> {
         (a_c >= self.a_min * slack && j_c >= self.j_min * slack).then_some((a_c, j_c))
     }
 
-    /// At speed v: the largest tangential acceleration the centripetal terms leave (at most
-    /// `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk left with no tangential
-    /// acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|, in one pass.
-    pub fn free_at(&self, v: f64) -> (f64, f64) {
-        let (mut a_c, mut j_c) = (self.a_cap, self.j_free);
-        for cell in self.cells {
-            for (i, ax) in self.machine.axes.iter().enumerate() {
-                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
-                if d1 > NEGLIGIBLE {
-                    a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
-                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v) / d1);
-                }
+    /// At each speed v of `v`: the largest tangential acceleration the centripetal terms leave
+    /// (at most `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk left with no tangential
+    /// acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|. All speeds in one pass
+    /// over the cells (the inner loop over speeds runs in SIMD lanes; each value is the scalar one).
+    pub fn free_at<const N: usize>(&self, v: &[f64; N]) -> ([f64; N], [f64; N]) {
+        let (mut a_c, mut j_c) = ([self.a_cap; N], [self.j_free; N]);
+        self.each_moving(|ax, [d1, d2, d3]| {
+            for k in 0..N {
+                let v = v[k];
+                lower(&mut a_c[k], (ax.max_acceleration - d2 * v * v) / d1);
+                lower(&mut j_c[k], (ax.max_jerk - d3 * v * v * v) / d1);
             }
-        }
+        });
         (a_c, j_c)
     }
 
-    /// The tangential jerk left at speed v with tangential acceleration up to `a` (at most
-    /// `j_free`): J_c = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i| over the cells.
-    pub fn jerk_with(&self, v: f64, a: f64) -> f64 {
-        let mut j_c = self.j_free;
-        for cell in self.cells {
-            for (i, ax) in self.machine.axes.iter().enumerate() {
-                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
-                if d1 > NEGLIGIBLE {
-                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a) / d1);
-                }
+    /// At each speed v of `v`, the tangential jerk left with tangential acceleration up to a
+    /// (`a`, at most `j_free`): J_c = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i| over the cells.
+    pub fn jerk_with<const N: usize>(&self, v: &[f64; N], a: &[f64; N]) -> [f64; N] {
+        let mut j_c = [self.j_free; N];
+        self.each_moving(|ax, [d1, d2, d3]| {
+            for k in 0..N {
+                let (v, a) = (v[k], a[k]);
+                lower(
+                    &mut j_c[k],
+                    (ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a) / d1,
+                );
             }
-        }
+        });
         j_c
     }
 
-    /// The largest tangential acceleration at speed v that leaves the jerk at least `j`:
-    /// min_i (J_i − |d3_i|·v³ − |d1_i|·j)/(3|d2_i|·v) over the cells (at most `a_cap`).
-    pub fn acceleration_leaving(&self, v: f64, j: f64) -> f64 {
-        let mut a_c = self.a_cap;
+    /// At each speed v of `v`, the largest tangential acceleration that leaves the jerk at least
+    /// j (`j`): min_i (J_i − |d3_i|·v³ − |d1_i|·j)/(3|d2_i|·v) over the cells (at most `a_cap`).
+    pub fn acceleration_leaving<const N: usize>(&self, v: &[f64; N], j: &[f64; N]) -> [f64; N] {
+        let mut a_c = [self.a_cap; N];
+        self.each_moving(|ax, [d1, d2, d3]| {
+            for k in 0..N {
+                let (v, j) = (v[k], j[k]);
+                let a = (ax.max_jerk - d3 * v * v * v - d1 * j) / (3.0 * d2 * v);
+                lower(&mut a_c[k], if d2 * v > NEGLIGIBLE { a } else { f64::INFINITY });
+            }
+        });
+        a_c
+    }
+
+    /// (axis, [|d1|, |d2|, |d3|]) of each cell and axis that moves (|d1| above `NEGLIGIBLE`).
+    #[inline(always)]
+    fn each_moving(&self, mut take: impl FnMut(&AxisLimits, Vec3)) {
         for cell in self.cells {
             for (i, ax) in self.machine.axes.iter().enumerate() {
-                let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
-                if d1 > NEGLIGIBLE && d2 * v > NEGLIGIBLE {
-                    a_c = a_c.min((ax.max_jerk - d3 * v * v * v - d1 * j) / (3.0 * d2 * v));
+                let d = [cell[0][i], cell[1][i], cell[2][i]];
+                if d[0] > NEGLIGIBLE {
+                    take(ax, d);
                 }
             }
         }
-        a_c
     }
 
     /// The largest v ≤ `v0` with a budget, and the budget there; (0, shares) if none. Per cell and
@@ -145,6 +157,13 @@ impl Budget<'_> {
         }
         (0.0, self.at(0.0).unwrap_or((self.a_min, self.j_min)))
     }
+}
+
+/// acc = min(acc, x) for a finite acc, as a compare and select (`f64::min`'s NaN rule keeps
+/// the loops above from running in SIMD lanes; a NaN x leaves acc either way).
+#[inline(always)]
+fn lower(acc: &mut f64, x: f64) {
+    *acc = if x < *acc { x } else { *acc };
 }
 
 /// Largest v ≥ 0 with d·v^n ≤ left (∞ if d is 0, 0 if nothing is left).

@@ -3,7 +3,7 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::{arc::curve_bands, hermite::Hermite, max_bounds};
+use super::{arc::curve_bands, arc::curve_top_speed, hermite::Hermite, max_bounds};
 use crate::config::Machine;
 use crate::feed::bands::Bands;
 use crate::feed::Limits;
@@ -202,12 +202,25 @@ pub struct CurveLimits {
 /// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped
 /// at `v_cap` (`curve_bands`); its class is its top speed.
 pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
-    let k = norm(max_bounds(cells)[1]);
-    let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-    let (limits, bands) = curve_bands(cells, rho, v_cap, m);
+    let (limits, bands) = curve_bands(cells, smallest_radius(cells), v_cap, m);
     CurveLimits {
         limits,
         bands,
         class: limits.v_max,
+    }
+}
+
+/// The top speed of `piece_limits` alone (`curve_top_speed`).
+pub(super) fn piece_speed(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> f64 {
+    curve_top_speed(cells, smallest_radius(cells), v_cap, m)
+}
+
+/// The smallest radius of curvature the cells allow (1/|p''| for the largest |p''|).
+fn smallest_radius(cells: &[[Vec3; 3]]) -> f64 {
+    let k = norm(max_bounds(cells)[1]);
+    if k > 0.0 {
+        1.0 / k
+    } else {
+        f64::INFINITY
     }
 }

@@ -14,7 +14,7 @@ use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
 /// Sub-intervals of the Taylor bound (guaranteed for any number; more is tighter).
-const BOUND_PIECES: usize = 8;
+pub(super) const BOUND_PIECES: usize = 8;
 /// Sub-intervals of the parameter speed's bound.
 const SPEED_PIECES: usize = 8;
 
@@ -138,6 +138,21 @@ impl Hermite {
             out[3][i] = 6.0 * c3 + u * (24.0 * c4 + u * 60.0 * c5);
         }
         out
+    }
+
+    /// The point at u alone (as `eval` gives it, without the derivatives: the tolerance checks
+    /// sample only points).
+    pub fn point(&self, u: f64) -> Vec3 {
+        let u = u.clamp(0.0, self.lambda);
+        if u >= self.lambda {
+            return self.end;
+        }
+        let c = &self.c;
+        let p = std::array::from_fn(|i| {
+            let (c1, c2, c3, c4, c5) = (c[0][i], c[1][i], c[2][i], c[3][i], c[4][i]);
+            u * (c1 + u * (c2 + u * (c3 + u * (c4 + u * c5))))
+        });
+        add(self.start, p)
     }
 
     /// Point and derivatives w.r.t. u (clamped to [0, λ]; the end point is exact).

@@ -5,8 +5,8 @@
 //! corner (`local_cost`), or None (a stop at the corner). The tolerance only admits cuts; the time
 //! picks among them, so a larger tolerance does not pick a slower one.
 
-use super::chain::{piece_limits, Curve, CurveLimits};
-use super::hermite::Hermite;
+use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
+use super::hermite::{Hermite, BOUND_PIECES};
 use super::smooth::{jet_at, joined_loss, Span};
 use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
 use super::{constant_speed_limit, line_limits, slowest_axis};
@@ -27,8 +27,8 @@ const DEVIATION_SAMPLES: usize = 64;
 /// and the axes' acceleration and jerk (a stop costs at least that; the neighbours' ramps come on
 /// top). A tiny sharp transition allows so little speed that stopping is quicker; a long gentle
 /// one (lines meeting at a rounding kink) runs at the feed.
-fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<CurveLimits> {
-    let limits = own_limits(h, feed, m);
+fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<f64> {
+    let v_max = own_speed(h, feed, m);
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,
@@ -37,14 +37,22 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<CurveLimits
         limits: slowest_axis(m, feed),
     })
     .duration();
-    (h.length() <= limits.limits.v_max * t_stop).then_some(limits)
+    (h.length() <= v_max * t_stop).then_some(v_max)
 }
 
 /// The limits of transition `h` at `feed` (`piece_limits`).
 fn own_limits(h: &Hermite, feed: f64, m: &Machine) -> CurveLimits {
-    let mut cells = Vec::new();
+    let mut cells = Vec::with_capacity(BOUND_PIECES);
     h.cells(|c| cells.push(c));
     piece_limits(&cells, feed / h.speed_bound().max(1.0), m)
+}
+
+/// The top speed of `own_limits` alone (the cuts are compared by it; only the chosen one's
+/// bands are computed).
+fn own_speed(h: &Hermite, feed: f64, m: &Machine) -> f64 {
+    let mut cells = Vec::with_capacity(BOUND_PIECES);
+    h.cells(|c| cells.push(c));
+    piece_speed(&cells, feed / h.speed_bound().max(1.0), m)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
@@ -90,13 +98,13 @@ pub(super) fn transition(
     // longer transition is faster through the corner but replaces more of a faster neighbour):
     // so a larger tolerance, which admits every cut a smaller one did, does not keep a costlier
     // one among those it compares.
-    let cost = |d: f64, h: &Hermite, limits: &CurveLimits| {
+    let cost = |d: f64, h: &Hermite, v_max: f64| {
         // Faster than the slower neighbour, it runs at that one's speed (in its chain, or with
         // no room to ramp between): its time at the slowest of the three.
-        let v = limits.limits.v_max.min(sides[0].v).min(sides[1].v);
+        let v = v_max.min(sides[0].v).min(sides[1].v);
         local_cost(d, h.length(), v, &sides)
     };
-    let mut best: Option<(f64, f64, Hermite, CurveLimits)> = None;
+    let mut best: Option<(f64, f64, Hermite)> = None;
     for _ in 0..MAX_SHRINKS {
         if d.is_nan() || d <= MIN_LENGTH {
             break;
@@ -109,25 +117,24 @@ pub(super) fn transition(
         match &best {
             None => {
                 if within() {
-                    let Some(limits) = faster_than_a_stop(&h, feed, m) else {
+                    let Some(v_max) = faster_than_a_stop(&h, feed, m) else {
                         break;
                     };
-                    best = Some((cost(d, &h, &limits), d, h, limits));
+                    best = Some((cost(d, &h, v_max), d, h));
                 }
                 d *= SHRINK;
             }
             Some(b) => {
-                let limits = own_limits(&h, feed, m);
-                let c = cost(d, &h, &limits);
+                let c = cost(d, &h, own_speed(&h, feed, m));
                 if c >= b.0 - SAVING || !within() {
                     break;
                 }
-                best = Some((c, d, h, limits));
+                best = Some((c, d, h));
                 d *= COMPARE_SHRINK;
             }
         }
     }
-    best.map(|(_, d, h, limits)| (d, d, h, limits))
+    best.map(|(_, d, h)| (d, d, h, own_limits(&h, feed, m)))
 }
 
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
@@ -158,7 +165,7 @@ fn side(span: &mut Span, feed: f64, m: &Machine) -> Side {
         }
         _ => {
             let l = span.own.get_or_insert_with(|| {
-                let mut cells = Vec::new();
+                let mut cells = Vec::with_capacity(BOUND_PIECES);
                 piece.curve.cells(|c| cells.push(c));
                 piece_limits(&cells, feed / sigma, m)
             });
@@ -204,10 +211,11 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
                 top: &s.top,
                 bands: &s.bands,
             };
-            let (mut t, mut x) = scurve7_banded::ramp(&banded, v, v_side);
+            // Every ramp here rises from v (one forward envelope).
+            let rise = scurve7_banded::Rise::from(&banded, v.max(0.0));
+            let (mut t, mut x) = rise.time_distance(v_side);
             if x > s.length {
-                let reach = scurve7_banded::max_speed(&banded, s.length, v);
-                (t, x) = scurve7_banded::ramp(&banded, v, reach);
+                (t, x) = rise.time_distance(rise.max_speed(s.length));
             }
             cost += t - x / v_side;
         }
@@ -220,8 +228,16 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
 /// farther than σ_max·λ/(2N) from a sample.
 fn within_tolerance(h: &Hermite, a: &Source, b: &Source, tol: f64) -> bool {
     let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
+    let bound = tol - guard;
     (0..=DEVIATION_SAMPLES).all(|k| {
-        let p = h.eval(h.length() * k as f64 / DEVIATION_SAMPLES as f64).p;
-        a.distance(p).min(b.distance(p)) <= tol - guard
+        let p = h.point(h.length() * k as f64 / DEVIATION_SAMPLES as f64);
+        // min(|pa|, |pb|) ≤ bound: the piece the sample starts nearer first (the other often
+        // needs no distance).
+        let (near, far) = if 2 * k <= DEVIATION_SAMPLES {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        near.distance(p) <= bound || far.distance(p) <= bound
     })
 }

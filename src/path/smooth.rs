@@ -20,7 +20,7 @@
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
 
 use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
-use super::hermite::{bezier, Hermite, Jet};
+use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
 use super::junction::transition;
 use super::source_map;
 use super::tolerance::{COLLINEAR_SIN2, JOINT_D1_EPS, JOINT_D2_EPS, KNOT_SLACK, MIN_LENGTH};
@@ -403,7 +403,7 @@ impl SmoothBuilder {
         out: &mut Vec<PathBlock>,
     ) {
         if piece.length() > MIN_LENGTH {
-            let mut cells = Vec::new();
+            let mut cells = Vec::with_capacity(BOUND_PIECES);
             piece.curve.cells(|c| cells.push(c));
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
@@ -550,9 +550,10 @@ pub(super) fn joined_loss(
     };
     let block = scurve7_banded::plan(&banded, l_fast, v_slow, v_slow, v_fast);
     let loss = chain_loss + (l_fast / v_slow - block.duration()).max(0.0);
-    let t = |a: f64, b: f64| scurve7_banded::ramp_time(&banded, a, b);
     let v_peak = block.v_peak();
-    let apart = t(0.0, v_slow) + t(v_slow, v_peak) - t(0.0, v_peak);
+    let from_rest = scurve7_banded::Rise::from(&banded, 0.0);
+    let t = |v: f64| from_rest.time_distance(v).0;
+    let apart = t(v_slow) + scurve7_banded::ramp_time(&banded, v_slow, v_peak) - t(v_peak);
     (loss <= apart).then_some(loss)
 }
 

@@ -42,7 +42,7 @@ pub(super) fn switch(h: &Hermite, a: &Source, b: &Source, tol: f64, symmetric: b
     let guard = h.speed_bound() * step / 2.0;
     let d: Vec<(f64, f64)> = (0..=SAMPLES)
         .map(|k| {
-            let p = h.eval(step * k as f64).p;
+            let p = h.point(step * k as f64);
             (a.distance(p), b.distance(p))
         })
         .collect();

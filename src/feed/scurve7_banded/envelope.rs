@@ -1,0 +1,353 @@
+//! The fastest rise lo → hi under speed bands as constant-jerk pieces in the phase plane (see
+//! the module comment of scurve7_banded.rs): min of the forward envelope F (from a = 0 at lo) and
+//! the backward envelope B (from a = 0 at hi).
+//!
+//! F depends on lo alone: below the band of hi its pieces are those of any rise from lo, and in
+//! that band they are clipped at hi. So a question that asks many ramps from one speed (the
+//! regula falsi of `max_speed`, the peak of a block) builds F once ([`Rise::from`]) and only B
+//! and the merge per ramp; every piece, hence every sum, is the one a rise built whole gives.
+
+use crate::feed::bands::{Banded, MAX_BANDS};
+use std::cell::RefCell;
+
+/// Pieces at most in an envelope: a rise and a plateau per band.
+const MAX_PIECES: usize = 2 * (MAX_BANDS + 1);
+
+/// a² = alpha + beta·v on [v0, v1] (beta = 2·jerk; 0 on a plateau).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Piece {
+    pub v0: f64,
+    pub v1: f64,
+    alpha: f64,
+    beta: f64,
+}
+
+impl Piece {
+    fn a2(&self, v: f64) -> f64 {
+        (self.alpha + self.beta * v).max(0.0)
+    }
+
+    /// Duration, jerk and starting acceleration of the piece run as a phase.
+    fn phase(&self) -> (f64, f64, f64) {
+        let (a0, a1) = (self.a2(self.v0).sqrt(), self.a2(self.v1).sqrt());
+        if self.beta == 0.0 {
+            let a = a0.max(f64::MIN_POSITIVE);
+            ((self.v1 - self.v0) / a, 0.0, a0)
+        } else {
+            let j = 0.5 * self.beta;
+            (((a1 - a0) / j).max(0.0), j, a0)
+        }
+    }
+
+    /// Duration, jerk and distance of the piece run as a phase (`phase`).
+    pub fn run(&self) -> (f64, f64, f64) {
+        let (tau, j, a0) = self.phase();
+        (tau, j, tau * (self.v0 + tau * (0.5 * a0 + tau * j / 6.0)))
+    }
+}
+
+/// A fixed-capacity list of pieces, by increasing speed (or decreasing, as built).
+#[derive(Clone, Copy, Debug)]
+struct Pieces {
+    n: usize,
+    p: [Piece; MAX_PIECES],
+}
+
+impl Pieces {
+    fn new() -> Pieces {
+        Pieces {
+            n: 0,
+            p: [Piece::default(); MAX_PIECES],
+        }
+    }
+    fn push(&mut self, piece: Piece) {
+        debug_assert!(self.n < MAX_PIECES, "room for every piece");
+        if piece.v1 > piece.v0 && self.n < MAX_PIECES {
+            self.p[self.n] = piece;
+            self.n += 1;
+        }
+    }
+    fn as_slice(&self) -> &[Piece] {
+        &self.p[..self.n]
+    }
+}
+
+/// A band of the ramp: speeds [floor, top] with acceleration `a` and jerk `j`; the floor is
+/// clipped to lo, the top is the band's own (∞ for the block's top band).
+#[derive(Clone, Copy, Debug, Default)]
+struct Level {
+    floor: f64,
+    top: f64,
+    a: f64,
+    j: f64,
+}
+
+/// The bands crossed between `lo` and `hi`, floors clipped to lo (tops are not: see `Level`).
+fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
+    let mut out = [Level::default(); MAX_BANDS + 1];
+    let mut n = 0;
+    // Band k as `Banded::limits`, `floor_of` and `top_of` give it, read in one walk: the band
+    // levels, then the block's own limits above them (no top).
+    let bands = b.bands.levels().iter().map(|l| (l.v_top, l.a_max, l.j_max));
+    let mut floor_k: f64 = 0.0;
+    for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
+        let floor = floor_k.max(lo);
+        if top_k.min(hi) > floor && n < out.len() {
+            out[n] = Level {
+                floor,
+                top: top_k,
+                a,
+                j,
+            };
+            n += 1;
+        }
+        if top_k >= hi {
+            break;
+        }
+        floor_k = top_k;
+    }
+    (out, n)
+}
+
+/// Forward envelope over `levels`: a² grows by 2·J per unit of speed up to each band's A (cut
+/// to it at the band's floor where the band below allowed more). Unclipped at the top.
+fn forward(levels: &[Level]) -> Pieces {
+    let mut fwd = Pieces::new();
+    let mut f: f64 = 0.0;
+    for l in levels {
+        f = f.min(l.a);
+        let reach = l.floor + (l.a * l.a - f * f) / (2.0 * l.j);
+        let end = reach.min(l.top);
+        fwd.push(Piece {
+            v0: l.floor,
+            v1: end,
+            alpha: f * f - 2.0 * l.j * l.floor,
+            beta: 2.0 * l.j,
+        });
+        if end < l.top {
+            fwd.push(Piece {
+                v0: end,
+                v1: l.top,
+                alpha: l.a * l.a,
+                beta: 0.0,
+            });
+            f = l.a;
+        } else {
+            f = (f * f + 2.0 * l.j * (l.top - l.floor)).sqrt();
+        }
+    }
+    fwd
+}
+
+/// Backward envelope from `hi` down over `levels` (pieces by decreasing speed).
+fn backward(levels: &[Level], hi: f64) -> Pieces {
+    let mut bwd = Pieces::new();
+    backward_into(levels, hi, &mut bwd);
+    bwd
+}
+
+/// `backward` into `bwd` (emptied first).
+fn backward_into(levels: &[Level], hi: f64, bwd: &mut Pieces) {
+    bwd.n = 0;
+    let mut g: f64 = 0.0;
+    for l in levels.iter().rev() {
+        let top = l.top.min(hi);
+        let g0 = g.min(l.a);
+        let reach = top - (l.a * l.a - g0 * g0) / (2.0 * l.j);
+        let start = reach.max(l.floor);
+        bwd.push(Piece {
+            v0: start,
+            v1: top,
+            alpha: g0 * g0 + 2.0 * l.j * top,
+            beta: -2.0 * l.j,
+        });
+        if start > l.floor {
+            bwd.push(Piece {
+                v0: l.floor,
+                v1: start,
+                alpha: l.a * l.a,
+                beta: 0.0,
+            });
+            g = l.a;
+        } else {
+            g = (g0 * g0 + 2.0 * l.j * (top - l.floor)).sqrt();
+        }
+    }
+}
+
+/// min(F, B) up to `hi` over the common refinement of both: on each stretch both are a² linear
+/// in v, so the smaller is the one below at its ends, the stretch split where they cross.
+fn merge(fwd: &[Piece], bwd: &[Piece], hi: f64, mut take: impl FnMut(&Piece)) {
+    let (mut i, mut k) = (0, bwd.len());
+    while i < fwd.len() && fwd[i].v0 < hi && k > 0 {
+        let fp = &Piece {
+            v1: fwd[i].v1.min(hi),
+            ..fwd[i]
+        };
+        let bp = &bwd[k - 1];
+        let (u0, u1) = (fp.v0.max(bp.v0), fp.v1.min(bp.v1));
+        if u1 > u0 {
+            let d = |u: f64| (fp.alpha - bp.alpha) + (fp.beta - bp.beta) * u;
+            let (d0, d1) = (d(u0), d(u1));
+            let piece = |x0: f64, x1: f64, forward: bool| Piece {
+                v0: x0,
+                v1: x1,
+                ..*(if forward { fp } else { bp })
+            };
+            if (d0 <= 0.0) == (d1 <= 0.0) {
+                take(&piece(u0, u1, d0 + d1 <= 0.0));
+            } else {
+                let root = (u0 - d0 * (u1 - u0) / (d1 - d0)).clamp(u0, u1);
+                take(&piece(u0, root, d0 <= 0.0));
+                take(&piece(root, u1, d1 <= 0.0));
+            }
+        }
+        if fp.v1 <= bp.v1 {
+            i += 1;
+        } else {
+            k -= 1;
+        }
+    }
+}
+
+/// Rises from one speed `lo` to any speed above it: F built once, up to the block's top band.
+pub struct Rise<'a> {
+    b: &'a Banded<'a>,
+    lo: f64,
+    /// The bands above lo (`levels` up to no top): those of a rise to hi are the ones below it.
+    levels: [Level; MAX_BANDS + 1],
+    n: usize,
+    fwd: Pieces,
+    /// Room for each rise's backward envelope (not zeroed again for every rise).
+    bwd: RefCell<Pieces>,
+}
+
+impl<'a> Rise<'a> {
+    pub fn from(b: &'a Banded<'a>, lo: f64) -> Rise<'a> {
+        let (levels, n) = levels(b, lo, f64::INFINITY);
+        Rise {
+            b,
+            lo,
+            levels,
+            n,
+            fwd: forward(&levels[..n]),
+            bwd: RefCell::new(Pieces::new()),
+        }
+    }
+
+    pub fn lo(&self) -> f64 {
+        self.lo
+    }
+
+    pub fn banded(&self) -> &'a Banded<'a> {
+        self.b
+    }
+
+    /// Time and distance of the rise lo → hi (0 for hi ≤ lo).
+    pub fn time_distance(&self, hi: f64) -> (f64, f64) {
+        let mut sum = Sum::default();
+        if hi > self.lo {
+            let n = self.levels[..self.n].partition_point(|l| l.floor < hi);
+            let mut bwd = self.bwd.borrow_mut();
+            backward_into(&self.levels[..n], hi, &mut bwd);
+            merge(self.fwd.as_slice(), bwd.as_slice(), hi, |p| sum.add(p));
+        }
+        (sum.t, sum.s)
+    }
+}
+
+/// The speed rise lo → hi as constant-jerk pieces, in order, to `take` (F built for this rise only).
+pub(super) fn rise(b: &Banded, lo: f64, hi: f64, take: impl FnMut(&Piece)) {
+    let (levels, n) = levels(b, lo, hi);
+    let levels = &levels[..n];
+    merge(
+        forward(levels).as_slice(),
+        backward(levels, hi).as_slice(),
+        hi,
+        take,
+    );
+}
+
+/// Time and distance of the rise lo → hi (the drop hi → lo takes the same).
+pub(super) fn rise_time_distance(b: &Banded, lo: f64, hi: f64) -> (f64, f64) {
+    let mut sum = Sum::default();
+    if hi > lo {
+        rise(b, lo, hi, |p| sum.add(p));
+    }
+    (sum.t, sum.s)
+}
+
+/// Time and distance summed over pieces in order.
+#[derive(Default)]
+struct Sum {
+    t: f64,
+    s: f64,
+}
+
+impl Sum {
+    fn add(&mut self, p: &Piece) {
+        let (tau, _, ds) = p.run();
+        self.t += tau;
+        self.s += ds;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::feed::bands::{Band, Bands};
+    use crate::feed::{Limits, ProfileKind};
+
+    /// Deterministic xorshift64* in [0, 1).
+    fn unit(state: &mut u64) -> f64 {
+        *state ^= *state >> 12;
+        *state ^= *state << 25;
+        *state ^= *state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A rise from a kept forward envelope (`Rise`) is the rise built whole, bit for bit, on 200
+    /// random band sets (acceleration and jerk rising and falling with speed) for ramps within a
+    /// band, across many, from rest, to band edges exactly and above the block's top speed.
+    #[test]
+    fn kept_forward_envelope_gives_the_same_rise() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..200 {
+            let top = Limits {
+                v_max: 0.1 + 0.3 * unit(&mut s),
+                a_max: 0.2 + 2.0 * unit(&mut s),
+                j_max: 5.0 + 500.0 * unit(&mut s),
+                snap_max: 1e9,
+            };
+            let levels: Vec<Band> = (0..16)
+                .map(|_| Band {
+                    v_top: top.v_max * unit(&mut s),
+                    a_max: 0.2 + 3.0 * unit(&mut s),
+                    j_max: 5.0 + 500.0 * unit(&mut s),
+                })
+                .collect();
+            let bands = Bands::below(&top, &levels);
+            let b = Banded {
+                kind: ProfileKind::Scurve7,
+                top: &top,
+                bands: &bands,
+            };
+            let edges: Vec<f64> = bands.levels().iter().map(|l| l.v_top).collect();
+            let mut speeds = vec![0.0, top.v_max, 1.5 * top.v_max];
+            speeds.extend(&edges);
+            speeds.extend((0..12).map(|_| top.v_max * unit(&mut s)));
+            for &lo in &speeds {
+                let rise = Rise::from(&b, lo);
+                for &hi in &speeds {
+                    let kept = rise.time_distance(hi);
+                    let whole = rise_time_distance(&b, lo, hi);
+                    assert_eq!(
+                        [kept.0.to_bits(), kept.1.to_bits()],
+                        [whole.0.to_bits(), whole.1.to_bits()],
+                        "{lo} → {hi}: {kept:?} vs {whole:?}"
+                    );
+                }
+            }
+        }
+    }
+}
