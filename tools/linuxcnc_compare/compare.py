@@ -304,7 +304,7 @@ def run_ours(cli: pathlib.Path, case: Case, jerk: float, out: pathlib.Path, max_
                           "--csv", str(csv_path), "--max-time", str(max_s)],
                          capture_output=True, text=True)
     if res.returncode != 0:
-        return (res.stderr.strip().splitlines() or ["exit status %d" % res.returncode])[-1]
+        return (res.stderr.strip().splitlines() or ["exit status %d" % res.returncode])[-1].replace(f"{out}/", "")
     summary = json.loads(res.stdout)
     pos: list[tuple[float, float, float]] = [(0.0, 0.0, 0.0)]
     line, speed = [0], [0.0]
