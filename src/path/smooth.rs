@@ -44,6 +44,8 @@ const CHECK_PIECES: usize = 4;
 /// Knot spacing of the fitted spans (m): long enough that rounding of the programmed points
 /// does not show as jerk, short enough to follow curvature.
 const KNOT_LENGTH: f64 = 2e-3;
+/// Largest turning between two knots (rad): three knots on one bend of at most twice this.
+const KNOT_TURN: f64 = std::f64::consts::FRAC_PI_4;
 /// Moves held at most in one run before its spans are fitted.
 const RUN_MAX: usize = 1024;
 /// Pieces at most in one chain.
@@ -587,19 +589,41 @@ fn end_of(mv: &Move) -> Vec3 {
     }
 }
 
-/// Knot indices into the run's vertices (0 … moves): about `KNOT_LENGTH` apart in length.
+/// Knot indices into the run's vertices (0 … moves): about `KNOT_LENGTH` apart in length, and
+/// closer where the moves turn more than `KNOT_TURN` between two knots. A knot's jet is the
+/// circle through it and its neighbouring knots, which stands for the curve there only while
+/// they lie on one bend of it: on a tight radius, 2 mm of chords turn through half a circle or
+/// more (the knots a turn apart coincide), and the spans between such knots have neither the
+/// curve's tangent nor its curvature.
 fn choose_knots(run: &[Move]) -> Vec<usize> {
     let total: f64 = run.iter().map(|mv| mv.source.length()).sum();
     let spans = ((total / KNOT_LENGTH).round() as usize).clamp(1, run.len());
+    let target = |k: usize| total * k as f64 / spans as f64 * (1.0 - KNOT_SLACK);
     let mut knots = vec![0];
-    let mut acc = 0.0;
-    for (i, mv) in run.iter().enumerate() {
-        acc += mv.source.length();
-        let next_target = total * knots.len() as f64 / spans as f64;
-        if i + 1 < run.len() && acc >= next_target * (1.0 - KNOT_SLACK) {
+    let (mut acc, mut grid, mut turned) = (0.0, 1, 0.0);
+    for (i, pair) in run.windows(2).enumerate() {
+        acc += pair[0].source.length();
+        let turn = turning_angle(&pair[0], &pair[1]);
+        let on_grid = acc >= target(grid);
+        if on_grid || turned + turn > KNOT_TURN {
             knots.push(i + 1);
+            turned = 0.0;
+            while acc >= target(grid) {
+                grid += 1;
+            }
+        } else {
+            turned += turn;
         }
     }
     knots.push(run.len());
     knots
+}
+
+/// The angle between two line moves' directions (rad).
+fn turning_angle(a: &Move, b: &Move) -> f64 {
+    let (Source::Line(a), Source::Line(b)) = (a.source, b.source) else {
+        unreachable!("runs of more than one move hold lines only")
+    };
+    let (u, w) = (a.direction(), b.direction());
+    norm(cross(u, w)).atan2(dot(u, w))
 }
