@@ -69,19 +69,12 @@ pub(super) fn transition(
         return None;
     }
     let tol = held.last.tolerance;
-    // Eq. 52: the apex of the line-line transition lies (3/16)·L·|t_out − t_in| from the corner.
     let w = norm(sub(t_out, t_in));
-    let apex_cut = if w > 0.0 {
-        16.0 * tol / (3.0 * w)
-    } else {
-        f64::INFINITY
-    };
-    let mut d = apex_cut
-        .min(0.5 * held.last.source.length())
+    let reach = (0.5 * held.last.source.length())
         .min(0.5 * next.first.source.length())
         .min(held.piece.length())
         .min(next.piece.length());
-    // Two lines: eq. 52 puts the largest deviation, |OQ| = tol, at the apex (blend.rs tests).
+    // Two lines: the largest deviation is at the apex, in closed form (`apex_share`).
     let lines = matches!(
         (
             held.piece.curve,
@@ -94,47 +87,134 @@ pub(super) fn transition(
     let feed = held.last.feed.min(next.first.feed);
     let mut sides = [side(held, held.last.feed, m), side(next, next.first.feed, m)];
     joined_sides(&mut sides);
-    // The longest cut within the tolerance first, then halves of it while they cost less (a
-    // longer transition is faster through the corner but replaces more of a faster neighbour):
-    // so a larger tolerance, which admits every cut a smaller one did, does not keep a costlier
-    // one among those it compares.
-    let cost = |d: f64, h: &Hermite, v_max: f64| {
-        // Faster than the slower neighbour, it runs at that one's speed (in its chain, or with
-        // no room to ramp between): its time at the slowest of the three.
-        let v = v_max.min(sides[0].v).min(sides[1].v);
-        local_cost(d, h.length(), v, &sides)
+    let search = Search {
+        held,
+        next,
+        sides: &sides,
+        tol,
+        feed,
+        lines,
+        m,
     };
-    let mut best: Option<(f64, f64, Hermite)> = None;
-    for _ in 0..MAX_SHRINKS {
-        if d.is_nan() || d <= MIN_LENGTH {
+    let mut best: Option<Found> = None;
+    for (k, &share) in LAMBDA_SHARES.iter().enumerate() {
+        // A transition at the feed or at its slower neighbour's speed keeps λ = 2d: a shorter
+        // one runs no faster there. The time falls with the share down to its best, then rises:
+        // a share that did not improve ends the search.
+        let limit = (feed / 1f64.max(best.as_ref().map_or(1.0, |b| b.h.speed_bound())))
+            .min(sides[0].v)
+            .min(sides[1].v);
+        if best
+            .as_ref()
+            .is_some_and(|b| b.v >= AT_FEED * limit || b.share != LAMBDA_SHARES[k - 1])
+        {
             break;
         }
-        let a = jet_at(&held.piece, held.piece.length() - d);
-        let b = jet_at(&next.piece, d);
-        // Parameter speed 1 at both ends: λ is the cut length on both sides.
-        let h = Hermite::new(a, b, 2.0 * d);
-        let within = || lines || within_tolerance(&h, &held.last.source, &next.first.source, tol);
-        match &best {
-            None => {
-                if within() {
-                    let Some(v_max) = faster_than_a_stop(&h, feed, m) else {
-                        break;
-                    };
-                    best = Some((cost(d, &h, v_max), d, h));
-                }
-                d *= SHRINK;
-            }
-            Some(b) => {
-                let c = cost(d, &h, own_speed(&h, feed, m));
-                if c >= b.0 - SAVING || !within() {
-                    break;
-                }
-                best = Some((c, d, h));
-                d *= COMPARE_SHRINK;
+        // The cut whose apex lies at the tolerance from the corner (eq. 52 at share 1).
+        let apex_cut = if w > 0.0 {
+            tol / (w * apex_share(share))
+        } else {
+            f64::INFINITY
+        };
+        if let Some(found) = search.cuts(apex_cut.min(reach), share) {
+            if best.as_ref().is_none_or(|b| found.cost < b.cost - SAVING) {
+                best = Some(Found { share, ..found });
             }
         }
     }
-    best.map(|(_, d, h)| (d, d, h, own_limits(&h, feed, m)))
+    best.map(|b| (b.d, b.d, b.h, own_limits(&b.h, feed, m)))
+}
+
+/// A transition's speed at this share of the feed or above counts as at the feed.
+const AT_FEED: f64 = 0.95;
+
+/// A cut found: its time at the corner, the cut, the curve and its top speed.
+struct Found {
+    cost: f64,
+    d: f64,
+    h: Hermite,
+    v: f64,
+    share: f64,
+}
+
+/// Shares of 2d tried as the transition's parameter length λ (cut d on both sides, |p'| = 1 at
+/// both ends). Seed 004 takes λ = 2d (eq. 51); a shorter λ makes the curvature more even along
+/// the transition (between two lines meeting at 53°, its peak is 1.71 times the mean turning
+/// rate at share 1, 1.22 at 0.8), which the speed limit of a tight corner gains by, while |p'|
+/// rises in the middle (1.31 at share 0.8), which a corner run at the feed loses by. The time
+/// at the corner picks among them.
+const LAMBDA_SHARES: [f64; 3] = [1.0, 0.85, 0.7];
+
+/// The apex of the transition between two lines with cut d and λ = 2·share·d lies
+/// |t_out − t_in|·d·apex_share(share) from the corner: p(λ/2) = corner + (t_out − t_in)·(d/2 −
+/// 5λ/32) (3/16 at share 1, eq. 52). For shares in [0.5, 1] the curve is convex and symmetric,
+/// so its distance from either line grows towards the apex: the largest deviation is there.
+pub(super) fn apex_share(share: f64) -> f64 {
+    0.5 - 5.0 * share / 16.0
+}
+
+/// What a junction's cut search needs: the two sides, the tolerance and the feed.
+struct Search<'a> {
+    held: &'a Span,
+    next: &'a Span,
+    sides: &'a [Side; 2],
+    tol: f64,
+    feed: f64,
+    lines: bool,
+    m: &'a Machine,
+}
+
+impl Search<'_> {
+    /// The cut for λ = 2·share·d, from `d`: the longest within the tolerance first, then halves
+    /// of it while they cost less (a longer transition is faster through the corner but replaces
+    /// more of a faster neighbour), so a larger tolerance, which admits every cut a smaller one
+    /// did, does not keep a costlier one among those it compares. None: a stop costs less.
+    fn cuts(&self, mut d: f64, share: f64) -> Option<Found> {
+        let (held, next, m) = (self.held, self.next, self.m);
+        let found = |d: f64, h: Hermite, v_max: f64| {
+            // Faster than the slower neighbour, it runs at that one's speed (in its chain, or
+            // with no room to ramp between): its time at the slowest of the three.
+            let v = v_max.min(self.sides[0].v).min(self.sides[1].v);
+            let cost = local_cost(d, h.length(), v, self.sides);
+            Found {
+                cost,
+                d,
+                h,
+                v: v_max,
+                share,
+            }
+        };
+        let mut best: Option<Found> = None;
+        for _ in 0..MAX_SHRINKS {
+            if d.is_nan() || d <= MIN_LENGTH {
+                break;
+            }
+            let a = jet_at(&held.piece, held.piece.length() - d);
+            let b = jet_at(&next.piece, d);
+            // Parameter speed 1 at both ends: λ is 2·share times the cut.
+            let h = Hermite::new(a, b, 2.0 * share * d);
+            let within =
+                || self.lines || within_tolerance(&h, &held.last.source, &next.first.source, self.tol);
+            match &best {
+                None => {
+                    if within() {
+                        let v_max = faster_than_a_stop(&h, self.feed, m)?;
+                        best = Some(found(d, h, v_max));
+                    }
+                    d *= SHRINK;
+                }
+                Some(b) => {
+                    let shorter = found(d, h, own_speed(&h, self.feed, m));
+                    if shorter.cost >= b.cost - SAVING || !within() {
+                        break;
+                    }
+                    best = Some(shorter);
+                    d *= COMPARE_SHRINK;
+                }
+            }
+        }
+        best
+    }
 }
 
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
@@ -214,8 +294,12 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
             // Every ramp here rises from v (one forward envelope).
             let rise = scurve7_banded::Rise::from(&banded, v.max(0.0));
             let (mut t, mut x) = rise.time_distance(v_side);
-            if x > s.length {
-                (t, x) = rise.time_distance(rise.max_speed(s.length));
+            let rest = (s.length - d).max(0.0);
+            if x > rest {
+                // The side ends before the ramp does: its time over what is left, at the
+                // ramp's mean acceleration (x = v·t + a·t²/2).
+                let a = 2.0 * (x - v * t) / (t * t);
+                (t, x) = ((2.0 * rest / (v + (v * v + 2.0 * a * rest).sqrt())), rest);
             }
             cost += t - x / v_side;
         }
