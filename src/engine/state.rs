@@ -16,7 +16,7 @@ use crate::valid::{at_most, within};
 // 9: postcard instead of bincode; time as whole ticks and a phase, no servo clock;
 // 10: speed bands on path blocks and the banded S-curve profile; 11: a window segment's stop
 // limit NaN until needed.
-const STATE_VERSION: u32 = 11;
+const STATE_VERSION: u32 = 12;
 
 /// Fields whose numbers may be more than finite and moderate (see `valid::numbers`): the
 /// planner's "not computed yet" and "no junction limit", a quintic's power coefficients.

@@ -7,7 +7,7 @@
 
 use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
 use super::hermite::{Hermite, BOUND_PIECES};
-use super::smooth::{jet_at, joined_loss, Span};
+use super::smooth::{jet_at, joined_loss, programmed, Span};
 use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
 use super::{constant_speed_limit, line_limits, slowest_axis};
 use crate::config::Machine;
@@ -70,18 +70,15 @@ pub(super) fn transition(
     }
     let tol = held.last.tolerance;
     let w = norm(sub(t_out, t_in));
-    let reach = (0.5 * held.last.source.length())
-        .min(0.5 * next.first.source.length())
+    // The programmed geometry at the corner: a move, or the moves of one line (fit.rs).
+    let (before, after) = (programmed(held.tail()), programmed(next.head()));
+    let reach = (0.5 * before.length())
+        .min(0.5 * after.length())
         .min(held.piece.length())
         .min(next.piece.length());
     // Two lines: the largest deviation is at the apex, in closed form (`apex_share`).
     let lines = matches!(
-        (
-            held.piece.curve,
-            next.piece.curve,
-            held.last.source,
-            next.first.source
-        ),
+        (held.piece.curve, next.piece.curve, before, after),
         (Curve::Line(_), Curve::Line(_), Source::Line(_), Source::Line(_))
     );
     let feed = held.last.feed.min(next.first.feed);
@@ -90,6 +87,7 @@ pub(super) fn transition(
     let search = Search {
         held,
         next,
+        programmed: [before, after],
         sides: &sides,
         tol,
         feed,
@@ -157,6 +155,7 @@ pub(super) fn apex_share(share: f64) -> f64 {
 struct Search<'a> {
     held: &'a Span,
     next: &'a Span,
+    programmed: [Source; 2],
     sides: &'a [Side; 2],
     tol: f64,
     feed: f64,
@@ -193,8 +192,8 @@ impl Search<'_> {
             let b = jet_at(&next.piece, d);
             // Parameter speed 1 at both ends: λ is 2·share times the cut.
             let h = Hermite::new(a, b, 2.0 * share * d);
-            let within =
-                || self.lines || within_tolerance(&h, &held.last.source, &next.first.source, self.tol);
+            let [before, after] = &self.programmed;
+            let within = || self.lines || within_tolerance(&h, before, after, self.tol);
             match &best {
                 None => {
                     if within() {
