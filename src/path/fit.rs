@@ -240,39 +240,37 @@ fn split_vertex(moves: &[Move]) -> usize {
 }
 
 /// Knot indices into the run's vertices (0 … moves): about `KNOT_LENGTH` apart in length, and
-/// closer where the moves turn more than `KNOT_TURN` between two knots; none inside one line
-/// (`continues`). A knot's jet is the circle through it and its neighbouring knots, which
-/// stands for the curve there only while they lie on one bend of it: on a tight radius, 2 mm
-/// of chords turn through half a circle or more (the knots a turn apart coincide), and the
-/// spans between such knots have neither the curve's tangent nor its curvature.
+/// closer where the direction turns by more than `KNOT_TURN` from a knot's (the net turn, so
+/// rounding steps that turn back and forth do not count); none inside one line (`continues`).
+/// A knot's jet is the circle through it and its neighbouring knots, which stands for the curve
+/// there only while they lie on one bend of it: on a tight radius, 2 mm of chords turn through
+/// half a circle or more (the knots a turn apart coincide), and the spans between such knots
+/// have neither the curve's tangent nor its curvature.
 fn choose_knots(run: &[Move]) -> Vec<usize> {
     let total: f64 = run.iter().map(|mv| mv.source.length()).sum();
     let spans = ((total / KNOT_LENGTH).round() as usize).clamp(1, run.len());
     let target = |k: usize| total * k as f64 / spans as f64 * (1.0 - KNOT_SLACK);
     let mut knots = vec![0];
-    let (mut acc, mut grid, mut turned) = (0.0, 1, 0.0);
+    let (mut acc, mut grid, mut from) = (0.0, 1, line_of(&run[0]).direction());
     for (i, pair) in run.windows(2).enumerate() {
         acc += pair[0].source.length();
         if continues(&pair[0], &pair[1]) {
             continue;
         }
-        let turn = turning_angle(&pair[0], &pair[1]);
-        if acc >= target(grid) || turned + turn > KNOT_TURN {
+        let next = line_of(&pair[1]).direction();
+        if acc >= target(grid) || angle(from, next) > KNOT_TURN {
             knots.push(i + 1);
-            turned = 0.0;
+            from = next;
             while acc >= target(grid) {
                 grid += 1;
             }
-        } else {
-            turned += turn;
         }
     }
     knots.push(run.len());
     knots
 }
 
-/// The angle between two line moves' directions (rad).
-fn turning_angle(a: &Move, b: &Move) -> f64 {
-    let (u, w) = (line_of(a).direction(), line_of(b).direction());
+/// The angle between two unit vectors (rad).
+fn angle(u: Vec3, w: Vec3) -> f64 {
     norm(cross(u, w)).atan2(dot(u, w))
 }
