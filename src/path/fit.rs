@@ -29,6 +29,8 @@ const CHECK_PIECES: usize = 4;
 const KNOT_LENGTH: f64 = 2e-3;
 /// Largest turning between two knots (rad): three knots on one bend of at most twice this.
 const KNOT_TURN: f64 = std::f64::consts::FRAC_PI_4;
+/// Share of the moves' turns that their net turn must reach to count as one bend.
+const COHERENT: f64 = 0.5;
 
 /// A vertex's tangent and curvature when it is smooth.
 pub(super) type VertexJet = Option<(Vec3, Vec3)>;
@@ -241,7 +243,8 @@ fn split_vertex(moves: &[Move]) -> usize {
 
 /// Knot indices into the run's vertices (0 … moves): about `KNOT_LENGTH` apart in length, and
 /// closer where the direction turns by more than `KNOT_TURN` from a knot's (the net turn, so
-/// rounding steps that turn back and forth do not count); none inside one line (`continues`).
+/// rounding steps that turn back and forth do not count) over a stretch that bows out by more
+/// than the tolerance a span may use; none inside one line (`continues`).
 /// A knot's jet is the circle through it and its neighbouring knots, which stands for the curve
 /// there only while they lie on one bend of it: on a tight radius, 2 mm of chords turn through
 /// half a circle or more (the knots a turn apart coincide), and the spans between such knots
@@ -251,16 +254,23 @@ fn choose_knots(run: &[Move]) -> Vec<usize> {
     let spans = ((total / KNOT_LENGTH).round() as usize).clamp(1, run.len());
     let target = |k: usize| total * k as f64 / spans as f64 * (1.0 - KNOT_SLACK);
     let mut knots = vec![0];
-    let (mut acc, mut grid, mut from) = (0.0, 1, line_of(&run[0]).direction());
+    let (mut acc, mut grid) = (0.0, 1);
+    let (mut since, mut from, mut turns) = (0.0, line_of(&run[0]).direction(), 0.0);
     for (i, pair) in run.windows(2).enumerate() {
         acc += pair[0].source.length();
         if continues(&pair[0], &pair[1]) {
             continue;
         }
         let next = line_of(&pair[1]).direction();
-        if acc >= target(grid) || angle(from, next) > KNOT_TURN {
+        turns += angle(line_of(&pair[0]).direction(), next);
+        let turn = angle(from, next);
+        // A bend: the moves turn one way (the net turn most of their turns: not a path that
+        // wanders) and bow out farther than the tolerance would absorb.
+        let bow = (acc - since) / turn * (1.0 - (0.5 * turn).cos());
+        let bend = turn > KNOT_TURN && turn > COHERENT * turns && bow > SPAN_SHARE * pair[0].tolerance;
+        if acc >= target(grid) || bend {
             knots.push(i + 1);
-            from = next;
+            (since, from, turns) = (acc, next, 0.0);
             while acc >= target(grid) {
                 grid += 1;
             }
