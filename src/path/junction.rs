@@ -7,13 +7,12 @@
 
 use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
 use super::hermite::{Hermite, BOUND_PIECES};
-use super::smooth::{jet_at, joined_loss, programmed, Span};
+use super::smooth::{jet_at, joined_loss, Move, Span};
 use super::tolerance::{MIN_LENGTH, RAMP_FIT, RAMP_STEPS, REVERSAL_COS};
 use super::{constant_speed_limit, line_limits, slowest_axis};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
 use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
-use crate::geometry::Source;
 use crate::geometry::{dot, norm, sub, unit};
 
 /// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
@@ -70,16 +69,14 @@ pub(super) fn transition(
     }
     let tol = held.last.tolerance;
     let w = norm(sub(t_out, t_in));
-    // The programmed geometry at the corner: a move, or the moves of one line (fit.rs).
-    let (before, after) = (programmed(held.tail()), programmed(next.head()));
-    let reach = (0.5 * before.length())
-        .min(0.5 * after.length())
-        .min(held.piece.length())
-        .min(next.piece.length());
+    // All that is left of the span before (the transition at its start has cut it already) and
+    // half of the span after (the other half for the corner at its end), over as many
+    // programmed moves as they stand for.
+    let reach = held.piece.length().min(0.5 * next.piece.length());
     // Two lines: the largest deviation is at the apex, in closed form (`apex_share`).
     let lines = matches!(
-        (held.piece.curve, next.piece.curve, before, after),
-        (Curve::Line(_), Curve::Line(_), Source::Line(_), Source::Line(_))
+        (held.piece.curve, next.piece.curve),
+        (Curve::Line(_), Curve::Line(_))
     );
     let feed = held.last.feed.min(next.first.feed);
     let mut sides = [side(held, held.last.feed, m), side(next, next.first.feed, m)];
@@ -87,9 +84,7 @@ pub(super) fn transition(
     let search = Search {
         held,
         next,
-        programmed: [before, after],
         sides: &sides,
-        tol,
         feed,
         lines,
         m,
@@ -167,9 +162,7 @@ pub(super) fn apex_share(share: f64) -> f64 {
 struct Search<'a> {
     held: &'a Span,
     next: &'a Span,
-    programmed: [Source; 2],
     sides: &'a [Side; 2],
-    tol: f64,
     feed: f64,
     lines: bool,
     m: &'a Machine,
@@ -207,8 +200,12 @@ impl Search<'_> {
             let b = jet_at(&next.piece, d);
             // Parameter speed 1 at both ends: λ is 2·share times the cut.
             let h = Hermite::new(a, b, 2.0 * share * d);
-            let [before, after] = &self.programmed;
-            let within = || self.lines || within_tolerance(&h, before, after, self.tol);
+            let within = || {
+                self.lines || {
+                    let (before, after) = (held.moves_at_end(d), next.moves_at_start(d));
+                    within_tolerance(&h, before, after)
+                }
+            };
             match &best {
                 None => {
                     if within() {
@@ -368,25 +365,27 @@ fn ramp_within(rise: &scurve7_banded::Rise, v_side: f64, rest: f64) -> (f64, f64
     at
 }
 
-/// Every point of `h` within `tol` of one of the two programmed pieces: samples every λ/N,
-/// each at most tol − σ_max·λ/(2N) away, where σ_max bounds |p'| — no point of the curve is
-/// farther than σ_max·λ/(2N) from a sample.
-fn within_tolerance(h: &Hermite, a: &Source, b: &Source, tol: f64) -> bool {
+/// Every point of `h` within the tolerance of one of the programmed moves it replaces (`before`
+/// and `after` the corner, in path order): samples every λ/N, each at most tolerance −
+/// σ_max·λ/(2N) from one, where σ_max bounds |p'| — no point of the curve is farther than
+/// σ_max·λ/(2N) from a sample.
+fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> bool {
     let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
-    let bound = tol - guard;
+    let near = |mv: &Move, p| mv.source.distance(p) <= mv.tolerance - guard;
     // From the middle outwards: a cut too long fails first near the apex, where the transition
     // is farthest from both pieces (the cut search tries several before one keeps it).
     let half = DEVIATION_SAMPLES / 2;
     let order = (0..=half).flat_map(|i| [half - i, half + i]).skip(1);
     order.into_iter().all(|k| {
         let p = h.point(h.length() * k as f64 / DEVIATION_SAMPLES as f64);
-        // min(|pa|, |pb|) ≤ bound: the piece the sample starts nearer first (the other often
-        // needs no distance).
-        let (near, far) = if 2 * k <= DEVIATION_SAMPLES {
-            (a, b)
+        // The moves nearest the sample's end of the transition first (the others often need
+        // no distance).
+        let mut first = before.iter().rev();
+        let mut second = after.iter();
+        if 2 * k <= DEVIATION_SAMPLES {
+            first.any(|mv| near(mv, p)) || second.any(|mv| near(mv, p))
         } else {
-            (b, a)
-        };
-        near.distance(p) <= bound || far.distance(p) <= bound
+            second.any(|mv| near(mv, p)) || first.any(|mv| near(mv, p))
+        }
     })
 }

@@ -52,18 +52,17 @@ pub struct Move {
     pub exact: bool,
 }
 
-/// A span on its way through stage 2: the piece left of it, the programmed moves at its ends and
-/// where the moves after the first begin on it (source_map.rs).
+/// A span on its way through stage 2: the piece left of it, the programmed moves it stands for
+/// and where the moves after the first begin on it (source_map.rs).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub(super) struct Span {
     pub(super) piece: Piece,
     pub(super) first: Move,
     pub(super) last: Move,
     pub(super) marks: Vec<(f64, u32)>,
-    /// The moves that continue one line (fit.rs `continues`) at its start and at its end, where
-    /// there are several: the programmed line a transition cuts there is all of them.
-    pub(super) head: Vec<Move>,
-    pub(super) tail: Vec<Move>,
+    /// The programmed moves, in order: the curve's parameter u runs along them as along their
+    /// lengths (a transition checks its cut against those it replaces).
+    pub(super) moves: Vec<Move>,
     /// The curve's own limits once computed (junction.rs needs them before stage 3 does; a
     /// cache, recomputed after a restore).
     #[serde(skip)]
@@ -77,8 +76,7 @@ impl Span {
             first: mv,
             last: mv,
             marks: Vec::new(),
-            head: Vec::new(),
-            tail: Vec::new(),
+            moves: vec![mv],
             own: None,
         }
     }
@@ -95,44 +93,44 @@ impl Span {
 
     /// `piece` standing for `moves` (u along it as along the moves).
     pub(super) fn fitted(piece: Piece, moves: &[Move]) -> Span {
-        let (first, last) = (moves[0], moves[moves.len() - 1]);
-        let head = moves
-            .windows(2)
-            .take_while(|w| super::fit::continues(&w[0], &w[1]))
-            .count();
-        let tail = moves
-            .windows(2)
-            .rev()
-            .take_while(|w| super::fit::continues(&w[0], &w[1]))
-            .count();
-        let group = |g: &[Move]| if g.len() > 1 { g.to_vec() } else { Vec::new() };
         Span {
             piece,
-            first,
-            last,
+            first: moves[0],
+            last: moves[moves.len() - 1],
             marks: source_map::span_marks(moves),
-            head: group(&moves[..=head]),
-            tail: group(&moves[moves.len() - 1 - tail..]),
+            moves: moves.to_vec(),
             own: None,
         }
     }
 
-    /// The programmed moves at its start, in order (one, or the moves of one line).
-    pub(super) fn head(&self) -> &[Move] {
-        if self.head.is_empty() {
-            std::slice::from_ref(&self.first)
-        } else {
-            &self.head
-        }
+    /// The moves the last `d` of its piece stands for, in order.
+    pub(super) fn moves_at_end(&self, d: f64) -> &[Move] {
+        let from = self.piece.u1 - d;
+        let mut start = 0.0;
+        let k = self.moves.iter().position(|mv| {
+            start += mv.source.length();
+            start > from
+        });
+        &self.moves[k.unwrap_or(self.moves.len() - 1)..]
     }
 
-    /// The programmed moves at its end, in order.
-    pub(super) fn tail(&self) -> &[Move] {
-        if self.tail.is_empty() {
-            std::slice::from_ref(&self.last)
-        } else {
-            &self.tail
+    /// The moves the first `d` of its piece stands for, in order.
+    pub(super) fn moves_at_start(&self, d: f64) -> &[Move] {
+        let to = self.piece.u0 + d;
+        let (mut start, mut first, mut end) = (0.0, None, self.moves.len());
+        for (k, mv) in self.moves.iter().enumerate() {
+            let next = start + mv.source.length();
+            if next > self.piece.u0 && first.is_none() {
+                first = Some(k);
+            }
+            if start >= to && first.is_some() {
+                end = k;
+                break;
+            }
+            start = next;
         }
+        let first = first.unwrap_or(self.moves.len() - 1);
+        &self.moves[first..end.max(first + 1)]
     }
 }
 
@@ -179,9 +177,10 @@ impl SmoothBuilder {
         self.run.iter().try_for_each(programmed)?;
         if let Some(s) = &self.held {
             one_piece(&s.piece)?;
-            let ends = [s.first, s.last].into_iter();
-            ends.chain(s.head.iter().chain(&s.tail).copied())
-                .try_for_each(|mv| programmed(&mv))?;
+            [s.first, s.last]
+                .iter()
+                .chain(&s.moves)
+                .try_for_each(programmed)?;
         }
         pieces(&self.chain)
     }
@@ -242,18 +241,17 @@ impl SmoothBuilder {
         }
         match transition(&mut held, &mut next, m) {
             Some((d_held, d_next, h, limits)) => {
+                let symmetric = matches!(
+                    (held.piece.curve, next.piece.curve),
+                    (Curve::Line(_), Curve::Line(_))
+                );
+                let (before, after) = (held.moves_at_end(d_held), next.moves_at_start(d_next));
+                let (line, marks) = source_map::transition_marks(&h, before, after, symmetric);
                 held.piece.u1 -= d_held;
                 next.piece.u0 += d_next;
                 let own = held.own.take();
                 self.piece(held.piece, &held.marks, held.last.feed, false, own, m, out);
                 let feed = held.last.feed.min(next.first.feed);
-                let symmetric = matches!(
-                    (held.piece.curve, next.piece.curve),
-                    (Curve::Line(_), Curve::Line(_))
-                );
-                let tol = held.last.tolerance;
-                let (line, marks) =
-                    source_map::transition_marks(&h, held.tail(), next.head(), tol, symmetric);
                 let piece = Piece::whole(Curve::Hermite(h), line);
                 self.piece(piece, &marks, feed, false, Some(limits), m, out);
                 self.held = Some(next);

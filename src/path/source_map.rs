@@ -35,22 +35,48 @@ pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
 }
 
 /// The lines transition `h` reports: the block at its start, and where each later one begins
-/// (increasing u). It passes from the moves before it (`before`, in order: one move, or moves
-/// of one line) to those after it (`after`) at `switch`.
+/// (increasing u). It replaces the end of the moves `before` it and the start of those `after`
+/// it (in path order). Between two lines (`symmetric`: a move or the moves of one line on each
+/// side), each half is within the tolerance of its line: the first half reports the moves before,
+/// the second those after, along each line as the foot of its points. Otherwise each sample of
+/// the tolerance check reports the nearest move from the last one's on (or stays where that is
+/// out of reach and the last is not), and the report changes halfway between samples: no point
+/// is farther than the guard from the sample it reports with.
 pub(super) fn transition_marks(
     h: &Hermite,
     before: &[Move],
     after: &[Move],
-    tol: f64,
     symmetric: bool,
 ) -> (u32, Vec<(f64, u32)>) {
-    let u_switch = switch(h, &programmed(before), &programmed(after), tol, symmetric);
     let mut marks = Vec::new();
-    let own = along(h, before, 0.0, u_switch, &mut marks);
-    let mut later = Vec::new();
-    let at_switch = along(h, after, u_switch, h.length(), &mut later);
-    marks.push((u_switch, at_switch));
-    marks.extend(later);
+    if symmetric {
+        let middle = 0.5 * h.length();
+        let own = along(h, before, 0.0, middle, &mut marks);
+        let mut later = Vec::new();
+        let at_middle = along(h, after, middle, h.length(), &mut later);
+        marks.push((middle, at_middle));
+        marks.extend(later);
+        return (own, marks);
+    }
+    let moves: Vec<&Move> = before.iter().chain(after).collect();
+    let step = h.length() / SAMPLES as f64;
+    let guard = h.speed_bound() * step / 2.0;
+    let holds = |mv: &Move, d: f64| d <= mv.tolerance - guard;
+    let (mut at, mut own) = (0, moves[0].line);
+    for k in 0..=SAMPLES {
+        let p = h.point(step * k as f64);
+        let d: Vec<f64> = moves[at..].iter().map(|mv| mv.source.distance(p)).collect();
+        let j = (0..d.len()).fold(0, |j, i| if d[i] < d[j] { i } else { j });
+        if j > 0 && (holds(moves[at + j], d[j]) || !holds(moves[at], d[0])) {
+            at += j;
+            if k > 0 {
+                marks.push((step * (k as f64 - 0.5), moves[at].line));
+            }
+        }
+        if k == 0 {
+            own = moves[at].line;
+        }
+    }
     (own, marks)
 }
 
@@ -92,33 +118,4 @@ fn along(h: &Hermite, moves: &[Move], u0: f64, u1: f64, marks: &mut Vec<(f64, u3
         marks.push((hi, pair[1].line));
     }
     at_u0.unwrap_or(last.line)
-}
-
-/// Parameter of transition `h` where it passes from `a` (the move before) to `b` (the move
-/// after): the middle of the sample interval where the samples turn nearer `b`, if every sample
-/// before it is within `tol` − guard of `a` and every one after within `tol` − guard of `b`;
-/// else, and between two lines (`symmetric`), the middle of the transition.
-fn switch(h: &Hermite, a: &Source, b: &Source, tol: f64, symmetric: bool) -> f64 {
-    let middle = 0.5 * h.length();
-    if symmetric {
-        return middle;
-    }
-    let step = h.length() / SAMPLES as f64;
-    let guard = h.speed_bound() * step / 2.0;
-    let d: Vec<(f64, f64)> = (0..=SAMPLES)
-        .map(|k| {
-            let p = h.point(step * k as f64);
-            (a.distance(p), b.distance(p))
-        })
-        .collect();
-    let valid = |k: usize| {
-        d[..k].iter().all(|&(da, _)| da <= tol - guard) && d[k..].iter().all(|&(_, db)| db <= tol - guard)
-    };
-    let nearer_b = d.iter().position(|&(da, db)| db < da).unwrap_or(SAMPLES).max(1);
-    let k = if valid(nearer_b) {
-        Some(nearer_b)
-    } else {
-        (1..=SAMPLES).find(|&k| valid(k))
-    };
-    k.map_or(middle, |k| step * (k as f64 - 0.5))
 }
