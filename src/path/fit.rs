@@ -29,6 +29,8 @@ const CHECK_PIECES: usize = 4;
 const KNOT_LENGTH: f64 = 2e-3;
 /// Largest turning between two knots (rad): three knots on one bend of at most twice this.
 const KNOT_TURN: f64 = std::f64::consts::FRAC_PI_4;
+/// A knot's neighbours more unequal than this along the path make its jet one-sided (`Vertices::jet`).
+const BALANCE: f64 = 3.0;
 /// Share of the moves' turns that their net turn must reach to count as one bend.
 const COHERENT: f64 = 0.5;
 
@@ -73,6 +75,68 @@ fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
     (unit(sub(toward, scale(rn, dot(toward, rn)))), k)
 }
 
+/// The run's vertices (0 … moves) and the path length to each.
+struct Vertices {
+    p: Vec<Vec3>,
+    s: Vec<f64>,
+}
+
+impl Vertices {
+    fn of(run: &[Move]) -> Vertices {
+        let p = std::iter::once(start_of(&run[0]))
+            .chain(run.iter().map(end_of))
+            .collect();
+        let mut s = vec![0.0];
+        s.extend(run.iter().scan(0.0, |acc, mv| {
+            *acc += mv.source.length();
+            Some(*acc)
+        }));
+        Vertices { p, s }
+    }
+
+    /// The jet at vertex `i` from the circle through it and the vertices `lo` before and `hi`
+    /// after it. Where one of those is more than `BALANCE` times as far along the path as the
+    /// other, the circle through three points on one side instead, on the nearer side whose two
+    /// steps are about even (beside a long move the circle through both sides stands for
+    /// neither: at a bend's end next to a straight row its tangent is off by degrees, its
+    /// curvature a tenth).
+    fn jet(&self, i: usize, lo: usize, hi: usize) -> (Vec3, Vec3) {
+        let s = &self.s;
+        let uneven = |a: f64, b: f64| a.max(b) / a.min(b);
+        let both = uneven(s[i] - s[lo], s[hi] - s[i]);
+        let across = circle_jet(self.p[lo], self.p[i], self.p[hi]);
+        if both <= BALANCE {
+            return across;
+        }
+        // A second step on each side: beyond `lo` (or `hi`) at least as long as the first, or
+        // the vertex between.
+        let last = self.p.len() - 1;
+        let before = (0..lo)
+            .rev()
+            .find(|&k| s[lo] - s[k] >= s[i] - s[lo])
+            .map(|k| (k, lo))
+            .or_else(|| (lo + 1 < i).then_some((lo, (lo + i) / 2)));
+        let after = (hi + 1..=last)
+            .find(|&k| s[k] - s[hi] >= s[hi] - s[i])
+            .map(|k| (hi, k))
+            .or_else(|| (i + 1 < hi).then_some(((i + hi) / 2, hi)));
+        // Of the sides whose two steps are even, the nearer.
+        let left = before
+            .filter(|&(far, near)| uneven(s[i] - s[near], s[near] - s[far]) <= BALANCE)
+            .map(|(far, near)| (s[i] - s[near], far, near));
+        let right = after
+            .filter(|&(near, far)| uneven(s[near] - s[i], s[far] - s[near]) <= BALANCE)
+            .map(|(near, far)| (s[near] - s[i], near, far));
+        match (left, right) {
+            (Some(l), r) if r.is_none_or(|r| l.0 <= r.0) => {
+                circle_jet_at_end(self.p[i], self.p[l.2], self.p[l.1], true)
+            }
+            (_, Some(r)) => circle_jet_at_end(self.p[i], self.p[r.1], self.p[r.2], false),
+            _ => across,
+        }
+    }
+}
+
 impl SmoothBuilder {
     /// Fit the run with Hermite spans between knots about `KNOT_LENGTH` apart; with
     /// `keep_tail`, the last span stays in the run (its first knot's jet carried) for the moves
@@ -89,17 +153,12 @@ impl SmoothBuilder {
             self.junction(Span::single(curve, first), m, out);
             return;
         }
-        let verts: Vec<Vec3> = std::iter::once(start_of(&first))
-            .chain(run.iter().map(end_of))
-            .collect();
+        let vertices = Vertices::of(&run);
+        let verts = &vertices.p;
         let knots = choose_knots(&run);
         let mut jets: Vec<VertexJet> = vec![None; knots.len()];
         for j in 1..knots.len() - 1 {
-            jets[j] = Some(circle_jet(
-                verts[knots[j - 1]],
-                verts[knots[j]],
-                verts[knots[j + 1]],
-            ));
+            jets[j] = Some(vertices.jet(knots[j], knots[j - 1], knots[j + 1]));
         }
         // The run's ends continue the circle through their three nearest knots (or vertices), so
         // curvature does not fall to zero there; the transition to the neighbour takes over.
@@ -128,7 +187,13 @@ impl SmoothBuilder {
             knots.len() - 1
         };
         for j in 0..spans {
-            self.fit(&run[knots[j]..knots[j + 1]], jets[j], jets[j + 1], m, out);
+            let span = Fit {
+                run: &run,
+                vertices: &vertices,
+                from: knots[j],
+                to: knots[j + 1],
+            };
+            self.fit(span, jets[j], jets[j + 1], m, out);
         }
         if spans < knots.len() - 1 {
             self.run = run[knots[spans]..].to_vec();
@@ -140,7 +205,8 @@ impl SmoothBuilder {
     /// of every programmed chord (guaranteed by the control points of the curve over
     /// each chord's parameter range); else split at the vertex nearest the middle, down to the
     /// programmed line.
-    fn fit(&mut self, moves: &[Move], a: VertexJet, b: VertexJet, m: &Machine, out: &mut Vec<PathBlock>) {
+    fn fit(&mut self, span: Fit, a: VertexJet, b: VertexJet, m: &Machine, out: &mut Vec<PathBlock>) {
+        let moves = &span.run[span.from..span.to];
         let (first, last) = (moves[0], moves[moves.len() - 1]);
         let one_line = moves.windows(2).all(|w| continues(&w[0], &w[1]));
         if one_line && a.is_none() && b.is_none() {
@@ -163,19 +229,21 @@ impl SmoothBuilder {
         } else if one_line {
             self.junction(Span::line(moves), m, out);
         } else {
-            let mid = split_vertex(moves);
-            let v = |i: usize| {
-                if i == 0 {
-                    start_of(&moves[0])
-                } else {
-                    end_of(&moves[i - 1])
-                }
-            };
-            let jm = Some(circle_jet(v(0), v(mid), v(moves.len())));
-            self.fit(&moves[..mid], a, jm, m, out);
-            self.fit(&moves[mid..], jm, b, m, out);
+            let mid = span.from + split_vertex(moves);
+            let jm = Some(span.vertices.jet(mid, span.from, span.to));
+            self.fit(Fit { to: mid, ..span }, a, jm, m, out);
+            self.fit(Fit { from: mid, ..span }, jm, b, m, out);
         }
     }
+}
+
+/// The moves `from` … `to` of a run, being fitted.
+#[derive(Clone, Copy)]
+struct Fit<'a> {
+    run: &'a [Move],
+    vertices: &'a Vertices,
+    from: usize,
+    to: usize,
 }
 
 fn line_of(mv: &Move) -> Line {
