@@ -187,6 +187,25 @@ pub fn falsi_from(
     good
 }
 
+/// The crossing of g between `good` (g ≤ 0) and `bad` (g > 0), to within `ROOT_TOL`, from a
+/// guess `x0` that a closed form gave to about its rounding: g at x0 and at the point half
+/// `ROOT_TOL` of |x0| past it (on the side g(x0) points to) bracket it, and the good one of the
+/// two is returned; None where they do not (or leave [good, bad]): then the regula falsi.
+pub fn crossing_near(x0: f64, good: f64, bad: f64, g: impl Fn(f64) -> f64) -> Option<f64> {
+    let inside = |x: f64| (x - good) * (x - bad) < 0.0;
+    let step = (0.5 * ROOT_TOL * x0.abs()).copysign(bad - good);
+    if !inside(x0) || step == 0.0 {
+        return None;
+    }
+    if g(x0) <= 0.0 {
+        let x1 = x0 + step;
+        (inside(x1) && g(x1) > 0.0).then_some(x0)
+    } else {
+        let x1 = x0 - step;
+        (inside(x1) && g(x1) <= 0.0).then_some(x1)
+    }
+}
+
 /// Step `w` down towards `floor` (a few ulps at first, doubling) until f(w) ≤ target; f(floor) ≤
 /// target is known, so at most a bounded number of steps. Returns w and f(w).
 pub fn fit_down(mut w: f64, floor: f64, target: f64, f: impl Fn(f64) -> f64) -> (f64, f64) {
@@ -251,6 +270,14 @@ mod tests {
                 1e-30
             }
         };
+        // From a guess at the crossing to rounding: two evaluations close it; a far one does not.
+        let g = |x: f64| x * x - 0.25;
+        for guess in [0.5 * (1.0 - 1e-15), 0.5, 0.5 * (1.0 + 1e-15)] {
+            let x = crossing_near(guess, 0.0, 1.0, g).unwrap();
+            assert!(g(x) <= 0.0 && 0.5 - x <= ROOT_TOL, "{x}");
+        }
+        assert_eq!(crossing_near(0.49, 0.0, 1.0, g), None);
+        assert_eq!(crossing_near(0.5, 0.6, 1.0, g), None);
         let x = falsi(0.0, 1.0, noisy);
         assert!(x <= 0.3 && 0.3 - x <= ROOT_TOL, "{x}");
         assert!(calls.get() < 50, "{} steps", calls.get());

@@ -239,6 +239,11 @@ impl<'a> Rise<'a> {
         self.lo
     }
 
+    /// The band the rise starts in: its top speed (∞ for the block's top band) and limits.
+    pub fn first_band(&self) -> Option<(f64, f64, f64)> {
+        self.levels[..self.n].first().map(|l| (l.top, l.a, l.j))
+    }
+
     pub fn banded(&self) -> &'a Banded<'a> {
         self.b
     }
@@ -254,6 +259,19 @@ impl<'a> Rise<'a> {
         }
         (sum.t, sum.s)
     }
+}
+
+/// The band of the speeds just below `v` (floor < v ≤ top, the first band for 0), where a ramp
+/// that ends at v from below runs last: its floor, acceleration and jerk.
+pub fn band_below(b: &Banded, v: f64) -> (f64, f64, f64) {
+    let mut floor = 0.0;
+    for l in b.bands.levels() {
+        if v <= l.v_top {
+            return (floor, l.a_max, l.j_max);
+        }
+        floor = l.v_top;
+    }
+    (floor, b.top.a_max, b.top.j_max)
 }
 
 /// The speed rise lo → hi as constant-jerk pieces, in order, to `take` (F built for this rise only).
