@@ -470,68 +470,6 @@ mod tests {
         assert!(banded > 1000, "too few curves with bands: {banded}");
     }
 
-    /// Cells dropped as dominated (`drop_dominated`, all at once or a chain's way: the cells
-    /// of its pieces added in turn) leave the bands and the top speed as they were, bit for bit,
-    /// on 300 random curves: random cells, some axes at zero, and cells each a copy of another
-    /// with some bounds lowered (dominated) or equal.
-    #[test]
-    fn dominated_cells_change_no_band() {
-        use crate::path::budget::drop_dominated;
-        let mut s = 0x5851_f42d_4c95_7f2du64;
-        let (mut dropped, mut banded) = (0, 0);
-        for _ in 0..300 {
-            let mut m = Machine::default();
-            for ax in m.axes.iter_mut() {
-                ax.max_acceleration = 0.5 + 10.0 * unit(&mut s);
-                ax.max_jerk = 5.0 + 200.0 * unit(&mut s);
-            }
-            let n = 2 + (unit(&mut s) * 12.0) as usize;
-            let mut cells: Vec<[Vec3; 3]> = Vec::new();
-            for _ in 0..n {
-                let cell: [Vec3; 3] = if cells.is_empty() || unit(&mut s) < 0.5 {
-                    std::array::from_fn(|k| {
-                        std::array::from_fn(|_| match unit(&mut s) {
-                            x if x < 0.15 => 0.0,
-                            x => (10f64).powf(2.0 * x - 1.5 + k as f64),
-                        })
-                    })
-                } else {
-                    let c = cells[(unit(&mut s) * cells.len() as f64) as usize];
-                    c.map(|row| row.map(|d| if unit(&mut s) < 0.3 { d * unit(&mut s) } else { d }))
-                };
-                cells.push(cell);
-            }
-            let k = norm(max_bounds(&cells)[1]);
-            let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
-            let mut all = cells.clone();
-            drop_dominated(&mut all, 0);
-            let mut chained = cells[..n / 2].to_vec();
-            drop_dominated(&mut chained, 0);
-            let from = chained.len();
-            chained.extend_from_slice(&cells[n / 2..]);
-            drop_dominated(&mut chained, from);
-            dropped += usize::from(all.len() < cells.len());
-            let top = curve_bands(&cells, rho, f64::INFINITY, &m).0.v_max;
-            for cap in [f64::INFINITY, 0.3 * top, top, 2.0 * top] {
-                let whole = curve_bands(&cells, rho, cap, &m);
-                for kept in [&all, &chained] {
-                    assert_eq!(max_bounds(kept), max_bounds(&cells));
-                    assert_eq!(
-                        format!("{:?}", curve_bands(kept, rho, cap, &m)),
-                        format!("{whole:?}")
-                    );
-                    let speed = curve_top_speed(kept, rho, cap, &m);
-                    assert_eq!(speed.to_bits(), whole.0.v_max.to_bits());
-                }
-                banded += usize::from(!whole.1.is_empty());
-            }
-        }
-        assert!(
-            dropped > 150 && banded > 600,
-            "too few cases: {dropped} dropped, {banded} banded"
-        );
-    }
-
     #[test]
     fn chord_error_limit_r10_delta1um() {
         // Seed 003: v = 2·sqrt(δ(2R − δ))/T, R = 10 mm, δ = 1 µm, T = 1 ms → 0.28283 m/s.

@@ -159,40 +159,6 @@ impl Budget<'_> {
     }
 }
 
-/// Drops from `cells` what never binds a budget: an axis's bounds (|p'|, |p''|, |p'''|) in a
-/// cell where another cell bounds that axis at least as much in all three (set to zero: an axis
-/// that does not move), and cells left with no axis. At speeds where a budget is left (every
-/// numerator A − d2·v², J − d3·v³ − … non-negative), each term of the dominated bounds is at
-/// least the other's, so every minimum, every speed bound and `max_bounds` are unchanged (equal
-/// bounds: the first is kept). `cells[..from]` already hold none that dominate each other: only
-/// pairs with a cell from `from` on are compared (a chain adds its pieces' cells so).
-pub fn drop_dominated(cells: &mut Vec<[Vec3; 3]>, from: usize) {
-    let n = cells.len();
-    for i in 0..3 {
-        for k in 0..n {
-            let x = [cells[k][0][i], cells[k][1][i], cells[k][2][i]];
-            if x == [0.0; 3] {
-                continue;
-            }
-            // A bound zeroed here was dominated: what it dominates, its dominator does too.
-            let start = if k < from { from } else { 0 };
-            let dominated = cells[start..].iter().zip(start..).any(|(c, j)| {
-                c[0][i] >= x[0]
-                    && c[1][i] >= x[1]
-                    && c[2][i] >= x[2]
-                    && j != k
-                    && (j < k || [c[0][i], c[1][i], c[2][i]] != x)
-            });
-            if dominated {
-                for row in cells[k].iter_mut() {
-                    row[i] = 0.0;
-                }
-            }
-        }
-    }
-    cells.retain(|c| c.iter().any(|row| row.iter().any(|&d| d != 0.0)));
-}
-
 /// acc = min(acc, x) for a finite acc, as a compare and select (`f64::min`'s NaN rule keeps
 /// the loops above from running in SIMD lanes; a NaN x leaves acc either way).
 #[inline(always)]

@@ -3,7 +3,6 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::budget::drop_dominated;
 use super::{arc::curve_bands, arc::curve_top_speed, hermite::Hermite, max_bounds};
 use crate::config::Machine;
 use crate::feed::bands::Bands;
@@ -203,11 +202,6 @@ pub struct CurveLimits {
 /// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped
 /// at `v_cap` (`curve_bands`); its class is its top speed.
 pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
-    binding_limits(&binding(cells), v_cap, m)
-}
-
-/// `piece_limits` of cells already rid of the bounds that never bind (`drop_dominated`).
-pub(super) fn binding_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
     let (limits, bands) = curve_bands(cells, smallest_radius(cells), v_cap, m);
     CurveLimits {
         limits,
@@ -219,14 +213,6 @@ pub(super) fn binding_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Cu
 /// The top speed of `piece_limits` alone (`curve_top_speed`).
 pub(super) fn piece_speed(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> f64 {
     curve_top_speed(cells, smallest_radius(cells), v_cap, m)
-}
-
-/// `cells` without the bounds that never bind (`drop_dominated`): the band pairs take a
-/// minimum over every cell at 17 speeds, and most cells of a curve never give it.
-fn binding(cells: &[[Vec3; 3]]) -> Vec<[Vec3; 3]> {
-    let mut kept = cells.to_vec();
-    drop_dominated(&mut kept, 0);
-    kept
 }
 
 /// The smallest radius of curvature the cells allow (1/|p''| for the largest |p''|).

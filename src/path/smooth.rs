@@ -19,8 +19,7 @@
 //!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
 
-use super::budget::drop_dominated;
-use super::chain::{binding_limits, Chain, Curve, CurveLimits, Piece};
+use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
 use super::junction::transition;
 use super::source_map;
@@ -406,15 +405,13 @@ impl SmoothBuilder {
         if piece.length() > MIN_LENGTH {
             let mut cells = Vec::with_capacity(BOUND_PIECES);
             piece.curve.cells(|c| cells.push(c));
-            // Only the bounds that can bind are kept, here and in the chain (the same limits).
-            drop_dominated(&mut cells, 0);
             let straight = matches!(piece.curve, Curve::Line(_));
             let sigma = piece.curve.speed_bound().max(1.0);
             // The speed class is the piece's own v_max; its ramps are within its own limits.
             let own = if straight {
                 None
             } else {
-                Some(known.unwrap_or_else(|| binding_limits(&cells, feed / sigma, m)))
+                Some(known.unwrap_or_else(|| piece_limits(&cells, feed / sigma, m)))
             };
             let (class, ramps) = match &own {
                 Some(l) => (l.class, (l.limits, l.bands.clone())),
@@ -460,9 +457,7 @@ impl SmoothBuilder {
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
-            let from = self.cells.len();
             self.cells.extend(cells);
-            drop_dominated(&mut self.cells, from);
             self.chain.push_marked(piece, marks);
         }
         if stop {
@@ -489,7 +484,7 @@ impl SmoothBuilder {
                 let v_cap = self.chain_feed / self.chain_sigma;
                 let own = match self.chain_single.take() {
                     Some(l) if chain.pieces.len() == 1 => l,
-                    _ => binding_limits(&self.cells, v_cap, m),
+                    _ => piece_limits(&self.cells, v_cap, m),
                 };
                 (Segment::Chain(chain), own.limits, own.bands, self.chain_sigma)
             }
