@@ -178,6 +178,19 @@ impl Scurve7Banded {
 /// the feed if the length allows, the highest peak otherwise; an exit that cannot be reached
 /// becomes the closest one that can (reported in `v_end`).
 pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scurve7Banded {
+    let (length, v_in, v_c, v_end) = speeds(b, length, v_in, v_out, v_feed);
+    build(b, length, v_in, v_c, v_end)
+}
+
+/// `plan`'s duration and cruise speed alone, the same bit for bit, without building its phases
+/// (the chain decisions compare block times).
+pub fn plan_time(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64) {
+    let (length, v_in, v_c, v_end) = speeds(b, length, v_in, v_out, v_feed);
+    (duration(b, length, v_in, v_c, v_end), v_c)
+}
+
+/// `plan`'s length, entry, cruise and exit speeds.
+fn speeds(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64, f64, f64) {
     let finite = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
     let (length, v_in, v_out) = (finite(length), finite(v_in), finite(v_out));
     let mut v_feed = finite(v_feed);
@@ -239,7 +252,41 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
         };
         (v_c, v_out)
     };
-    build(b, length, v_in, v_c, v_end)
+    (length, v_in, v_c, v_end)
+}
+
+/// The duration `build` sums: the rise's phases, the cruise, the drop's phases in reverse, each
+/// added when it is longer than 0, in that order.
+fn duration(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> f64 {
+    let ramp = |from: f64| {
+        let (mut taus, mut n, mut s) = ([0.0; 4 * (MAX_BANDS + 1)], 0, 0.0);
+        rise(b, from, v_c, |p| {
+            let (tau, _, ds) = p.run();
+            if n < taus.len() {
+                taus[n] = tau;
+                n += 1;
+            }
+            s += ds;
+        });
+        (taus, n, s)
+    };
+    let (up, n_up, s_up) = ramp(v_in);
+    let (down, n_down, s_down) = if v_end == v_in {
+        (up, n_up, s_up)
+    } else {
+        ramp(v_end)
+    };
+    let ramps = s_up + s_down;
+    let cruise = if v_c > 0.0 {
+        ((length - ramps) / v_c).max(0.0)
+    } else {
+        0.0
+    };
+    let phases = up[..n_up]
+        .iter()
+        .chain([&cruise])
+        .chain(down[..n_down].iter().rev());
+    phases.filter(|&&tau| tau > 0.0).fold(0.0, |t, &tau| t + tau)
 }
 
 fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {

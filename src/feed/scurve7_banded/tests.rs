@@ -228,7 +228,8 @@ fn unit(state: &mut u64) -> f64 {
 /// Every answer is the crossing of the ramp distance as evaluated, whether scurve7's closed
 /// form in one band gave it (`crossing_near`) or the regula falsi: on 200 random band sets, the
 /// largest speed, the lowest exit and a block's peak fit, and 1.5 `ROOT_TOL` more does not (the
-/// exit: 1e-9 of the target more, where the drop's distance is flat to rounding).
+/// exit: 1e-9 of the target more, where the drop's distance is flat to rounding). `plan_time`
+/// is the block's duration and peak bit for bit.
 #[test]
 fn answers_are_crossings_within_the_tolerance() {
     use crate::feed::tolerance::ROOT_TOL;
@@ -273,6 +274,15 @@ fn answers_are_crossings_within_the_tolerance() {
             }
             let (v_in, v_out) = (top.v_max * unit(&mut s), top.v_max * unit(&mut s));
             let p = plan(&b, length, v_in, v_out, top.v_max);
+            // Its time alone is the same, bit for bit (equal ends too).
+            for (v_in, v_out) in [(v_in, v_out), (v_in, v_in)] {
+                let p = plan(&b, length, v_in, v_out, top.v_max);
+                let (t, v) = plan_time(&b, length, v_in, v_out, top.v_max);
+                assert_eq!(
+                    [t, v].map(f64::to_bits),
+                    [p.duration(), p.v_peak()].map(f64::to_bits)
+                );
+            }
             let peak = p.v_peak();
             let total = |v: f64| ramp_distance(&b, v_in, v) + ramp_distance(&b, v, v_out);
             if peak > v_in.max(v_out) && peak < top.v_max {
