@@ -40,20 +40,30 @@ pub(super) fn switch(h: &Hermite, a: &Source, b: &Source, tol: f64, symmetric: b
     }
     let step = h.length() / SAMPLES as f64;
     let guard = h.speed_bound() * step / 2.0;
-    let d: Vec<(f64, f64)> = (0..=SAMPLES)
-        .map(|k| {
-            let p = h.point(step * k as f64);
-            (a.distance(p), b.distance(p))
-        })
-        .collect();
-    let valid = |k: usize| {
-        d[..k].iter().all(|&(da, _)| da <= tol - guard) && d[k..].iter().all(|&(_, db)| db <= tol - guard)
+    let points: [_; SAMPLES + 1] = std::array::from_fn(|k| h.point(step * k as f64));
+    let db = points.map(|p| b.distance(p));
+    // The distances to `a` up to where the samples turn nearer `b` (the rest only if needed:
+    // the switch is valid there on every transition but a few).
+    let mut da = [f64::NAN; SAMPLES + 1];
+    let mut turn = None;
+    for k in 0..=SAMPLES {
+        da[k] = a.distance(points[k]);
+        if db[k] < da[k] {
+            turn = Some(k);
+            break;
+        }
+    }
+    let nearer_b = turn.unwrap_or(SAMPLES).max(1);
+    let valid = |da: &[f64], k: usize| {
+        da[..k].iter().all(|&d| d <= tol - guard) && db[k..].iter().all(|&d| d <= tol - guard)
     };
-    let nearer_b = d.iter().position(|&(da, db)| db < da).unwrap_or(SAMPLES).max(1);
-    let k = if valid(nearer_b) {
+    let k = if valid(&da, nearer_b) {
         Some(nearer_b)
     } else {
-        (1..=SAMPLES).find(|&k| valid(k))
+        for k in turn.map_or(SAMPLES + 1, |k| k + 1)..=SAMPLES {
+            da[k] = a.distance(points[k]);
+        }
+        (1..=SAMPLES).find(|&k| valid(&da, k))
     };
     k.map_or(middle, |k| step * (k as f64 - 0.5))
 }
