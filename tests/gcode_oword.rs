@@ -231,7 +231,6 @@ fn loops_are_bounded() {
 fn errors_are_located() {
     for (text, want) in [
         ("o100 endsub\n", "t.ngc:1:1: o100 endsub outside a call of o100 (no o100 call is running)"),
-        ("o1 sub\no2 return\no1 endsub\no1 call\n", "t.ngc:2:1: o2 return inside a call of o1"),
         ("G0 X1\n  o1 endwhile\n", "t.ngc:2:3: o1 endwhile without a matching o1 while"),
         ("o1 while [0]\nG0 X1\n", "t.ngc:1:1: o1 while without o1 endwhile"),
         ("o1 while [1]\nG0 X1\n", "t.ngc:1:1: o1 while is not closed before the end of the program"),

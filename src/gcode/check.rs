@@ -31,14 +31,15 @@ pub fn length(letter: u8, value: f64, unit: f64) -> Result<f64, String> {
     }
 }
 
-/// A feed F (program units per minute) in m/s: any positive finite F (the caller caps it at
-/// the machine's largest feed); the range only keeps the number finite.
+/// A feed F (program units per minute) in m/s: zero or any positive finite F (the caller caps
+/// it at the machine's largest feed); the range only keeps the number finite. F0 is a setting
+/// LinuxCNC takes (its planner tests write `F0` before `G95`); a feed move at F0 is refused.
 pub fn feed(value: f64, unit: f64) -> Result<f64, String> {
     let v = value * unit / 60.0;
-    if v > 0.0 && v.is_finite() {
+    if v >= 0.0 && v.is_finite() {
         Ok(v)
-    } else if value <= 0.0 {
-        Err(format!("feed F{value} must be positive"))
+    } else if value < 0.0 {
+        Err(format!("feed F{value} must not be negative"))
     } else {
         Err(format!("feed F{value} out of range (not a finite number)"))
     }

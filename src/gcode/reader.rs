@@ -337,7 +337,7 @@ impl Reader {
             deleted = raw.replacen('/', " ", 1);
             raw = &deleted;
         }
-        if let Some(head) = super::oword::head(raw, Some(&self.params)) {
+        if let Some(head) = super::oword::head_run(raw, &self.params) {
             let head = head.map_err(|(c, m)| self.error(line, c as u32 + 1, m))?;
             let here = flow::Place {
                 offset: self.offset,

@@ -354,40 +354,27 @@ impl Reader {
         Ok(found.next)
     }
 
-    /// `oN endsub [value]` / `oN return [value]`: back to the caller, `#<_value>` set.
+    /// `oN endsub [value]` / `oN return [value]`: back to the caller, `#<_value>` set (0 without
+    /// a value, as LinuxCNC's `read_o`). Whatever its label, it returns from the call running:
+    /// LinuxCNC's `convert_control_functions` leaves the current call level on any `return` or
+    /// `endsub` (its sample retval.ngc returns from `o1000` with `o1010 return` inside
+    /// `o1010 if`).
     fn return_from(&mut self, line: u32, head: &Head, value: Option<f64>) -> Result<(), ProgramError> {
-        let kw = if head.keyword == Keyword::Return {
-            "return"
-        } else {
-            "endsub"
+        let Some(frame) = self.flow.calls.pop() else {
+            let kw = head.keyword.name();
+            let msg = format!(
+                "{} {kw} outside a call of {} (no {} call is running)",
+                head.shown(),
+                head.shown(),
+                head.shown()
+            );
+            return Err(self.error(line, head.col, msg));
         };
-        let frame = match self.flow.calls.last() {
-            Some(f) if f.label == head.label => self.flow.calls.pop(),
-            Some(f) => {
-                let msg = format!(
-                    "{} {kw} inside a call of {}",
-                    head.shown(),
-                    oword::shown(&f.label)
-                );
-                return Err(self.error(line, head.col, msg));
-            }
-            None => {
-                let msg = format!(
-                    "{} {kw} outside a call of {} (no {} call is running)",
-                    head.shown(),
-                    head.shown(),
-                    head.shown()
-                );
-                return Err(self.error(line, head.col, msg));
-            }
-        };
-        let Some(frame) = frame else { return Ok(()) };
         self.params.leave_call(frame.locals);
         self.flow.open.truncate(frame.open);
-        if let Some(v) = value {
-            self.params.set_named("_value", v);
-            self.params.set_named("_value_returned", 1.0);
-        }
+        self.params.set_named("_value", value.unwrap_or(0.0));
+        self.params
+            .set_named("_value_returned", if value.is_some() { 1.0 } else { 0.0 });
         self.jump = Some(frame.back);
         Ok(())
     }
