@@ -107,3 +107,138 @@ fn callsub_is_call_followed_by_an_error() {
         vec![[1.0, 0.0, 0.0]]
     );
 }
+
+/// The machine of LinuxCNC's side-by-side run: tool 4 of radius 3.175 mm (1/8 in).
+fn tool4() -> Machine {
+    Machine::from_toml("[tool.4]\nradius_mm = 3.175\n", "m.toml").unwrap()
+}
+
+/// "Cutter Compensation", "Programming Entry Moves" ("Any move that is long enough to perform
+/// the compensation will work as the entry move. The minimum length is the cutter radius"):
+/// LinuxCNC's comp311_2.ngc enters G41 on a G3 arc. LinuxCNC's `convert_arc_comp1` runs the
+/// tool from where it is to the offset of the programmed end, (2, 3 + 1/8), on an arc whose
+/// centre lies on the radial line there: (2, y) with 1 + (4 − y)² = (y − 3.125)², y = 7.234375
+/// / 1.75 = 4.1339… . The rest is the contour's offset, 1/8 in out, every element tangent to
+/// the next. LinuxCNC 2.9 (rs274, this tool) prints ARC_FEED(2.0000, 3.1250, 2.0000, 4.1339,
+/// 1), ARC_FEED(3.1250, 2.0000, …), STRAIGHT_FEED(3.1250, -1.0000), ARC_FEED(2.0000, -2.1250,
+/// …), STRAIGHT_FEED(-2.0000, -2.1250), ARC_FEED(-2.6750, -0.1000, …), STRAIGHT_FEED(1.3250,
+/// 2.9000), ARC_FEED(2.0000, 3.1250, …): the closed forms below, in inches.
+#[test]
+fn g41_entry_on_an_arc_as_linuxcnc_comp311_2() {
+    let text = "g20 f60\nt4 m6\ng0 z1\ng0 x1 y4\ng1 z0\ng41\ng3 x2 y3 i1\ng2 x3 y2 j-1\ng1 y-1\n\
+                g2 x2 y-2 i-1\ng1 x-2\ng2 x-2.6 y-0.2 j1\ng1 x1.4 y2.8\ng2 x2 y3 i.6 j-.8\ng40\nm2\n";
+    let b = blocks_with(text, &tool4()).unwrap();
+    let inch = |p: [f64; 3]| p.map(|v| v / 25.4e-3);
+    let moves: Vec<&Block> = b.iter().filter(|b| end_of(b).is_some()).skip(3).collect();
+    let r = 0.125;
+    let want: [([f64; 2], Option<[f64; 2]>); 8] = [
+        ([2.0, 3.0 + r], Some([2.0, 7.234375 / 1.75])),
+        ([3.0 + r, 2.0], Some([2.0, 2.0])),
+        ([3.0 + r, -1.0], None),
+        ([2.0, -2.0 - r], Some([2.0, -1.0])),
+        ([-2.0, -2.0 - r], None),
+        // (−2, −1) + 1.125·(−0.6, 0.8): the radius to (−2.6, −0.2), outwards.
+        ([-2.0 - 1.125 * 0.6, -1.0 + 1.125 * 0.8], Some([-2.0, -1.0])),
+        // (1.4, 2.8) + 0.125·(−0.6, 0.8), the line's left normal.
+        ([1.4 - r * 0.6, 2.8 + r * 0.8], None),
+        ([2.0, 3.0 + r], Some([2.0, 2.0])),
+    ];
+    for (k, (m, (end, center))) in moves.iter().zip(want).enumerate() {
+        let got = inch(end_of(m).unwrap());
+        assert!(
+            (got[0] - end[0]).abs() < 1e-12 && (got[1] - end[1]).abs() < 1e-12,
+            "move {k}: end {got:?}, LinuxCNC {end:?}"
+        );
+        match (m.motion, center) {
+            (Motion::Arc { center: c, .. }, Some(want)) => {
+                let c = inch(c);
+                assert!(
+                    (c[0] - want[0]).abs() < 1e-12 && (c[1] - want[1]).abs() < 1e-12,
+                    "move {k}: centre {c:?}, LinuxCNC {want:?}"
+                );
+            }
+            (Motion::Linear { .. }, None) => {}
+            (motion, _) => panic!("move {k}: {motion:?}"),
+        }
+    }
+    // The G40 move: nothing after it in the plane; LinuxCNC ends where the contour closes.
+    assert_eq!(moves.len(), 8, "{moves:?}");
+}
+
+/// The G41/G42 entry arc followed by a corner (LinuxCNC `convert_arc_comp1`, then its corner
+/// step on the entry arc's own circle). G2 from (0, 0) to (2, 2) about (2, 0), tool 1/8 in:
+/// - G41 (outside), then `G1 Y4`, a concave corner: the tool path's centre (2, y0), 4 + y0² =
+///   (2.125 − y0)², y0 = 0.515625 / 4.25; it ends where its circle meets the line's offset
+///   x = 1.875. rs274 prints ARC_FEED(1.8750, 2.1211, 2.0000, 0.1213, -1).
+/// - G42 (inside), then `G1 Y-1`: centre (2, y0), 4 + y0² = (1.875 − y0)², y0 = −0.484375 /
+///   3.75, end on x = 1.875: ARC_FEED(1.8750, 1.8711, 2.0000, -0.1292, -1).
+/// - G41, then `G1 Y-1`, a convex corner: the entry arc ends at (2, 2.125), the G450 arc about
+///   the corner to (2.125, 2): ARC_FEED(2.0000, 2.1250, 2.0000, 0.1213, -1), ARC_FEED(2.1250,
+///   2.0000, 2.0000, 2.0000, -1).
+#[test]
+fn entry_arc_then_a_corner() {
+    let run = |side: &str, next: &str| {
+        let text =
+            format!("g20 f60\nt4 m6\ng0 x0 y0\n{side}\ng2 x2 y2 i2 j0\ng1 {next}\ng40\ng0 x6 y6\nm2\n");
+        blocks_with(&text, &tool4()).unwrap()
+    };
+    let inch = |p: [f64; 3]| [p[0] / 25.4e-3, p[1] / 25.4e-3];
+    let arc = |b: &Block| match b.motion {
+        Motion::Arc { to, center, .. } => (inch(to), inch(center)),
+        m => panic!("{m:?}"),
+    };
+    let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12;
+    let y0: f64 = 0.515625 / 4.25;
+    let want = [1.875, y0 + ((2.125 - y0).powi(2) - 0.125f64.powi(2)).sqrt()];
+    let (to, c) = arc(&run("g41", "y4")[1]);
+    assert!(close(to, want) && close(c, [2.0, y0]), "{to:?} {c:?}");
+    let y0: f64 = -0.484375 / 3.75;
+    let want = [1.875, y0 + ((1.875 - y0).powi(2) - 0.125f64.powi(2)).sqrt()];
+    let (to, c) = arc(&run("g42", "y-1")[1]);
+    assert!(close(to, want) && close(c, [2.0, y0]), "{to:?} {c:?}");
+    let b = run("g41", "y-1");
+    let (to, c) = arc(&b[1]);
+    assert!(
+        close(to, [2.0, 2.125]) && close(c, [2.0, 0.515625 / 4.25]),
+        "{to:?} {c:?}"
+    );
+    let (to, c) = arc(&b[2]);
+    assert!(close(to, [2.125, 2.0]) && close(c, [2.0, 2.0]), "{to:?} {c:?}");
+}
+
+/// Entry arcs LinuxCNC refuses, and the one it runs that the reader refuses (chosen otherwise):
+/// an arc ending within the tool radius of its start (LinuxCNC: "Radius of cutter compensation
+/// entry arc is not greater than the tool radius"); a short arc whose start lies behind the
+/// tangent at its offset end — LinuxCNC's centre falls beyond the end and the tool loops round
+/// (295° for G3 X0.9848 Y0.17365 I-1 from (1, 0), tool 1/8) to arrive against the contour's
+/// direction, cutting outside it: refused as a gouge.
+#[test]
+fn entry_arcs_refused() {
+    let run = |arc: &str| {
+        blocks_with(
+            &format!("g20 f60\nt4 m6\ng0 x1 y0\ng41\n{arc}\ng40 g0 x5\n"),
+            &tool4(),
+        )
+    };
+    let e = run("g3 x0.995004165 y0.099833417 i-1").unwrap_err();
+    assert!(
+        e.starts_with("t.ngc:5:1: the G41/G42 entry arc ends 2.5389 mm from its start, not farther than the tool radius 3.1750 mm"),
+        "{e}"
+    );
+    let e = run("g3 x0.9848 y0.17365 i-1").unwrap_err();
+    assert!(
+        e.starts_with("t.ngc:5:1: the G41/G42 entry arc starts behind the tangent"),
+        "{e}"
+    );
+    // A half circle from (1, 0) about (0, 0) runs to (−0.875, 0) about (0.0625, 0), the middle
+    // of the radial line's chord: rs274 prints ARC_FEED(-0.8750, 0.0000, 0.0625, 0.0000, 1).
+    let b = run("g3 x-1 y0 i-1").unwrap();
+    let Motion::Arc { to, center, .. } = b[1].motion else {
+        panic!("{b:?}")
+    };
+    let (x, cx) = (to[0] / 25.4e-3, center[0] / 25.4e-3);
+    assert!(
+        (x + 0.875).abs() < 1e-12 && (cx - 0.0625).abs() < 1e-12,
+        "{x} {cx}"
+    );
+}
