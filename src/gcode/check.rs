@@ -112,7 +112,7 @@ mod tests {
         assert!(e.contains("out of range") && e.contains(" in)"), "{e}");
         assert!(feed(1e6, 1e-3).is_ok() && feed(f64::MAX, 25.4e-3).is_ok());
         assert!(feed(f64::INFINITY, 1e-3).unwrap_err().contains("out of range"));
-        assert!(feed(-1.0, 1e-3).unwrap_err().contains("positive"));
+        assert!(feed(-1.0, 1e-3).unwrap_err().contains("negative") && feed(0.0, 1e-3) == Ok(0.0));
         assert_eq!(turns("G2", 1.0), Ok(0));
         assert_eq!(turns("G2", 10_000.0), Ok(9_999));
         assert!(turns("G2", 10_001.0).unwrap_err().contains("1 to 10000"));
