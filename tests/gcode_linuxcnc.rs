@@ -83,12 +83,19 @@ fn g10_l2_r_rotates_the_coordinate_system() {
         (to.map(|v| v * 1e3), center.map(|v| v * 1e3)),
         ([-2.0, 0.0, 0.0], [-1.0, 0.0, 0.0])
     );
-    // LinuxCNC refuses R in G10 L20; a rotated XZ / YZ plane is not a machine plane.
+    // LinuxCNC refuses R in G10 L20; G18/G19 arcs turn with the system
+    // (tests/gcode_linuxcnc_samples.rs).
     assert_eq!(
         error("G10 L20 P1 X0 R30\n"),
         "t.ngc:1:15: R (rotation) is not allowed in G10 L20, only in L2"
     );
-    assert!(error("G10 L2 P1 R30\nG18 G2 X1 Z0 I0.5 K0 F100\n").starts_with("t.ngc:2:5: G2 in G18/G19 while"));
+    assert!(matches!(
+        blocks("G10 L2 P1 R30\nG18 G2 X1 Z0 I0.5 K0 F100\n")[0].motion,
+        Motion::Arc {
+            plane: cnc_motion::geometry::Plane::Turned { yz: false, .. },
+            ..
+        }
+    ));
 }
 
 /// "Polar Coordinates": `G1 @1^90` is `G1 Y1`; the documentation's spiral (G91 @ and ^ both

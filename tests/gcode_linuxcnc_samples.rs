@@ -242,3 +242,91 @@ fn entry_arcs_refused() {
         "{x} {cx}"
     );
 }
+
+/// "G10 L2" (R: "rotation about the Z axis") with G18/G19 arcs: LinuxCNC rotates the end and
+/// the centre about Z, and its canon turns the plane's axes with them, so the arc lies in a
+/// vertical plane turned by R. Its planner test arc-feed_full_yz.ngc (G20, `G10 L2 P0 X-2 Y1
+/// R60`, `G1 X1.5 Z.5`, `G18 G2 X.5 Z1.5 K1`, "270 deg."): rs274 prints ARC_FEED(1.5, 0.5,
+/// 1.5, 1.5, -1) in program coordinates — centre X1.5 Z1.5, radius 1 in, end X.5 Z1.5. In
+/// machine coordinates m = R60·(x, y) + (−2, 1): every point of the arc is at 1 in from the
+/// centre (−2 + 0.75, 1 + 1.5·sin 60°, 1.5) in the plane through Z along (cos 60°, sin 60°),
+/// the arc 3/2·π in long, ending at (−2 + 0.25, 1 + 0.5·sin 60°, 1.5). The same in G19
+/// (arc-feed_full_xz.ngc: `G0 Y1.5 Z.5`, `G19 G2 Y.5 Z1.5 K1`) turns the YZ plane: end
+/// (−2 − 0.5·sin 60°, 1 + 0.25, 1.5), a quarter circle (clockwise from −Z to −Y seen from +X).
+/// A helix rises along the turned normal.
+#[test]
+fn g18_g19_arcs_in_a_rotated_system() {
+    let inch = 25.4e-3;
+    let (c, s) = (0.5, 3f64.sqrt() / 2.0);
+    let to_program = |m: [f64; 3]| {
+        let (x, y) = (m[0] / inch + 2.0, m[1] / inch - 1.0);
+        [c * x + s * y, -s * x + c * y, m[2] / inch]
+    };
+    let head = "G20 G90 F1000\nG10 L2 P0 X-2 Y1 R60\nG0 X0 Y0 Z0\n";
+    for (text, center, end, yz, quarters) in [
+        (
+            "G1 X1.5 Z.5\nG18 G2 X.5 Z1.5 K1\n",
+            [1.5, 0.0, 1.5],
+            [0.5, 0.0, 1.5],
+            false,
+            3.0,
+        ),
+        (
+            "G0 Y1.5 Z.5\nG19 G2 Y.5 Z1.5 K1\n",
+            [0.0, 1.5, 1.5],
+            [0.0, 0.5, 1.5],
+            true,
+            1.0,
+        ),
+        (
+            "G1 X1.5 Z.5\nG90.1 G18 G2 X.5 Z1.5 I1.5 K1.5\n",
+            [1.5, 0.0, 1.5],
+            [0.5, 0.0, 1.5],
+            false,
+            3.0,
+        ),
+    ] {
+        let b = blocks(&format!("{head}{text}"));
+        let arc = b.last().unwrap();
+        let Motion::Arc { to, plane, .. } = arc.motion else {
+            panic!("{b:?}")
+        };
+        let close = |p: [f64; 3], q: [f64; 3]| p.iter().zip(q).all(|(a, b)| (a - b).abs() < 1e-12);
+        assert!(close(to_program(to), end), "{text}: end {:?}", to_program(to));
+        assert!(matches!(plane, cnc_motion::geometry::Plane::Turned { yz: y, .. } if y == yz));
+        let Some(cnc_motion::geometry::Source::Arc(geo)) = arc.geometry() else {
+            panic!("{arc:?}")
+        };
+        let quarter = std::f64::consts::FRAC_PI_2 * inch;
+        assert!((geo.length() - quarters * quarter).abs() < 1e-12, "{text}");
+        for k in 0..=16 {
+            let p = to_program(geo.eval(geo.length() * k as f64 / 16.0).p);
+            let r = ((0..3).map(|i| (p[i] - center[i]).powi(2)).sum::<f64>()).sqrt();
+            // On the circle, in the program's plane through the centre.
+            let normal = if yz { 0 } else { 1 };
+            assert!(
+                (r - 1.0).abs() < 1e-9 && (p[normal] - center[normal]).abs() < 1e-9,
+                "{text} {k}: {p:?}"
+            );
+        }
+    }
+    // A helix: G18 with Y rises along the program's Y, turned: end (0.5, 1, 1.5) in program.
+    let b = blocks(&format!("{head}G1 X1.5 Z.5\nG18 G2 X.5 Z1.5 K1 Y1\n"));
+    let Motion::Arc { to, .. } = b.last().unwrap().motion else {
+        panic!("{b:?}")
+    };
+    let p = to_program(to);
+    assert!(
+        (p[0] - 0.5).abs() < 1e-12 && (p[1] - 1.0).abs() < 1e-12 && (p[2] - 1.5).abs() < 1e-12,
+        "{p:?}"
+    );
+    // Cutter compensation takes its offsets in the machine's plane: refused in a turned one.
+    let m = tool4();
+    let e = blocks_with(&format!("{head}T4 M6\nG18 G41 G1 X1 Z1\nX2\n"), &m).unwrap_err();
+    assert!(
+        e.starts_with(
+            "t.ngc:5:1: cutter compensation in G18/G19 while the coordinate system is rotated (R60)"
+        ),
+        "{e}"
+    );
+}

@@ -150,6 +150,15 @@ impl Reader {
             let m = "the plane changed while cutter compensation is on (G40 first)";
             return Err(self.error(b.line, 1, m));
         }
+        if self.comp.side != 0.0 && self.comp.plane != Plane::XY && self.rotated() {
+            // The offsets are taken in the machine's plane; a turned G18/G19 plane is none.
+            let m = format!(
+                "cutter compensation in G18/G19 while the coordinate system is rotated (R{}): \
+                 the rotated plane is not one of the machine's",
+                self.rotation()
+            );
+            return Err(self.error(b.line, 1, m));
+        }
         let (side, r) = (self.comp.side, self.comp.radius);
         self.check_arc_radius(&b, &elem)?;
         if let Some(entry) = self.comp.entry.take() {
