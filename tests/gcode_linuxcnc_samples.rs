@@ -101,7 +101,12 @@ fn callsub_is_call_followed_by_an_error() {
         "t.ngc:2:15: o<g20sub>: unexpected 'sub' after 'call' (LinuxCNC reads the keyword call and \
          refuses the rest: \"Unexpected character after O-word\")"
     );
-    // In a branch not taken the line is skipped, as LinuxCNC checks the rest only when it runs.
+    // In a branch not taken the line is skipped, as LinuxCNC checks the rest only when it
+    // runs; so is a word that is no keyword at all (LinuxCNC's O_none).
+    assert_eq!(
+        ends("o1 if [0]\no1 goto\no1 endif\nG0 X1\n"),
+        vec![[1.0, 0.0, 0.0]]
+    );
     assert_eq!(
         ends("o1 if [0]\nO<g20sub> callsub\no1 endif\nG0 X1\n"),
         vec![[1.0, 0.0, 0.0]]
@@ -329,4 +334,41 @@ fn g18_g19_arcs_in_a_rotated_system() {
         ),
         "{e}"
     );
+}
+
+/// "G40" ("the move after G40 … leaves from the compensated end") as LinuxCNC runs its
+/// gmoccapy_2_tools_with_cutter_radius_compensation.ngc: the first circle ends at its
+/// compensated point (52.5527, 50), `G0 Z30`, then `G40` and `G0 X50 Y50`, a move with no
+/// motion in the plane as programmed. LinuxCNC's `convert_cutter_compensation_off` takes the
+/// programmed point for the current one, so that move brings the tool back to (50, 50); the
+/// second circle (tool 1, r 1.5875, G41 again) then enters from there on an arc to (63.4125,
+/// 50) about (56.70625, 50). rs274 prints STRAIGHT_TRAVERSE(52.5527, 50.0000, 30.0000),
+/// STRAIGHT_TRAVERSE(50.0000, 50.0000, …), ARC_FEED(63.4125, 50.0000, 56.7063, 50.0000, 1, …);
+/// LinuxCNC 2.9 ends at (51.5875, 50, 42.9794) (no G40 before M2), as here; its sampled path and
+/// ours agree within 1.5 µm.
+#[test]
+fn g40_exit_without_motion_in_the_plane() {
+    let m = Machine::from_toml(
+        "[tool.1]\nradius_mm = 1.5875\nlength_mm = 12.9794\n[tool.3]\nradius_mm = 2.5527\nlength_mm = 32.3342\n",
+        "m.toml",
+    )
+    .unwrap();
+    let text = "G17 G21 G54 G61 G40 G49 G80 G90\nT3 M6\nG43\nG0 X50 Y50\nG0 Z30\nG0 Z10\nF250\nG1 Z0\n\
+                G41\nG3 X70 Y50 Z-1 I10 J0\nF2000\nG3 I -20\nG3 X50 Y50 Z1 I-10 J0\nG0 Z30\nG40\nT1 M6\nG43\n\
+                G0 X50 Y50\nG0 Z10\nF400\nG1 Z1\nG41\nG3 X65 Y50 Z-1 I7.5 J0\nF1000\nG3 I-15\n\
+                G3 X50 Y50 Z1 I-7.5 J0\nG0 Z30\nG0 X50 Y50\nM2\n";
+    let b = blocks_with(text, &m).unwrap();
+    let at = |line: u32| {
+        let blk = b.iter().find(|x| x.line == line).unwrap();
+        end_of(blk).unwrap().map(|v| (v * 1e7).round() / 1e4)
+    };
+    assert_eq!(at(14), [52.5527, 50.0, 62.3342]);
+    assert_eq!(at(18), [50.0, 50.0, 62.3342]);
+    let entry = b.iter().find(|x| x.line == 23).unwrap();
+    let Motion::Arc { to, center, .. } = entry.motion else {
+        panic!("{entry:?}")
+    };
+    assert!((to[0] * 1e3 - 63.4125).abs() < 1e-9 && (center[0] * 1e3 - 56.70625).abs() < 1e-9);
+    let end = end_of(b.iter().rev().find(|x| end_of(x).is_some()).unwrap()).unwrap();
+    assert_eq!(end.map(|v| (v * 1e7).round() / 1e4), [51.5875, 50.0, 42.9794]);
 }

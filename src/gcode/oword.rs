@@ -26,6 +26,9 @@ pub enum Keyword {
     /// A bare `O1234` (a comment may follow): a program number (LinuxCNC "Fanuc-Style
     /// Numbered Programs").
     Number,
+    /// A word that is no keyword: an error where the line runs, skipped otherwise (LinuxCNC's
+    /// O_none).
+    Unknown,
 }
 
 const KEYWORDS: [(&str, Keyword); 15] = [
@@ -180,7 +183,13 @@ fn parse_head(b: &[u8], o: usize, params: Option<&Params>) -> Located<Head> {
             shown(&label),
             String::from_utf8_lossy(word)
         );
-        return Err((start, msg));
+        return Ok(Head {
+            label,
+            keyword: Keyword::Unknown,
+            col: o as u32 + 1,
+            rest: start + len,
+            trailing: Some((start, msg)),
+        });
     };
     let trailing = (word.len() > name.len()).then(|| {
         let msg = format!(
@@ -296,7 +305,12 @@ mod tests {
             vec![1.0, 5.0]
         );
         assert!(head("G1 X1", None).is_none());
-        assert_eq!(head("o100 jump", None).unwrap().unwrap_err().0, 5);
+        let p = Params::default();
+        assert_eq!(head_run("o100 jump", &p).unwrap().unwrap_err().0, 5);
+        assert_eq!(
+            head("o100 jump", None).unwrap().unwrap().keyword,
+            Keyword::Unknown
+        );
         // LinuxCNC's prefix match: `callsub` is `call`, then 'sub' is refused where it is run.
         let h = head("o<g20sub> callsub", None).unwrap().unwrap();
         assert_eq!(

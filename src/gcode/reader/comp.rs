@@ -252,10 +252,19 @@ impl Reader {
     }
 
     /// A block without motion in the plane: held back while an element waits for its corner.
+    /// After G40 a move without motion in the plane is the exit move all the same: LinuxCNC's
+    /// `convert_cutter_compensation_off` ends the held element at the compensated point and
+    /// takes the programmed one for the current point, so the next move, even along Z alone,
+    /// brings the tool back to the programmed point.
     fn not_in_plane(&mut self, b: Block) -> Result<(), ProgramError> {
+        let exit = self.comp.side == 0.0 && matches!(b.motion, Motion::Rapid { .. } | Motion::Linear { .. });
         if matches!(b.motion, Motion::Stop(StopKind::End)) {
             self.finish_held()?;
             self.emit(b, None);
+        } else if let Some(held) = exit.then(|| self.comp.held.take()).flatten() {
+            self.end_held(held, None);
+            self.flush_deferred();
+            self.emit_plain(b);
         } else if self.comp.entry.is_some() || self.comp.held.is_some() {
             if self.comp.deferred.len() >= MAX_DEFERRED {
                 let m =

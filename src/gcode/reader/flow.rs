@@ -225,6 +225,8 @@ impl Reader {
             }
             Keyword::Break | Keyword::Continue => self.leave_pass(line, next, &head),
             // A program number heads a program; later it would start an M98/M99 subprogram.
+            // Refused by `head_run` before it gets here.
+            Keyword::Unknown => Err(self.error(line, head.col, "unknown O-word keyword")),
             Keyword::Number if self.motion.is_none() => Ok(()),
             Keyword::Number => {
                 let l = head.shown();
