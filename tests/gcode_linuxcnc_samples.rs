@@ -372,3 +372,48 @@ fn g40_exit_without_motion_in_the_plane() {
     let end = end_of(b.iter().rev().find(|x| end_of(x).is_some()).unwrap()).unwrap();
     assert_eq!(end.map(|v| (v * 1e7).round() / 1e4), [51.5875, 50.0, 42.9794]);
 }
+
+/// A tool exactly as large as the hole (LinuxCNC "G41, G42": "The lead in move must be at least
+/// as long as the tool radius"; its `convert_arc_comp2`: `arc_radius <= tool_radius` is "Tool
+/// radius not less than arc radius with comp"). LinuxCNC's useful-subroutines.ngc mills a
+/// 1/8 in hole with a 1/16 in end mill, `o100 call [0] [0] [.01] [.125] [.125] [.0625]`; with the
+/// side-by-side machine's tool 1 (radius 1.5875 mm = 1/16 in) LinuxCNC 2.9 stops at its entry
+/// move `g41 g0 x#1 …`, 1/16 in long, and so does the reader. With a longer entry the hole's
+/// arc, radius equal to the tool's, is refused as LinuxCNC refuses it (checked in LinuxCNC 2.9
+/// in mm: "Tool radius not less than arc radius with comp"); 1 µm larger it runs, the tool
+/// centre on a circle of 1 µm about the hole's centre.
+#[test]
+fn tool_as_large_as_the_hole() {
+    let m = Machine::from_toml("[tool.1]\nradius_mm = 1.5875\n", "m.toml").unwrap();
+    let sub = "o100 sub\n#4=[0 - #4]\n#7=[#6 / 2]\n#8=[#3 - #7]\ng0 z#3\ng0 x[#1 + #6] y[#2 + [#5 / 2]]\n\
+               g41 g0 x#1 y[#2 + [#5 / 2]]\no101 while [#8 GT #4]\ng3 x#1 y[#2 + [#5 / 2]] i0 j[0 - [#5 / 2]] z#8\n\
+               #8=[#8 - #7]\no101 endwhile\ng40\no100 endsub\n";
+    let text =
+        format!("{sub}g20 g64 g17 g90\nt1 m6\nf60\no100 call [0] [0] [.01] [.125] [.125] [.0625]\nm2\n");
+    let e = blocks_with(&text, &m).unwrap_err();
+    assert_eq!(
+        e,
+        "t.ngc:7:1: the G41/G42 entry move is 1.5875 mm long, not longer than the tool radius 1.5875 mm \
+         (LinuxCNC: \"Length of cutter compensation entry move is not greater than the tool radius\")"
+    );
+    // A longer entry (tool dia. argument 0.1 in): the arc of radius 1/16 in is refused.
+    let text = format!("{sub}g20 g64 g17 g90\nt1 m6\nf60\no100 call [0] [0] [.01] [.125] [.125] [.1]\nm2\n");
+    let e = blocks_with(&text, &m).unwrap_err();
+    assert!(
+        e.starts_with(
+            "t.ngc:9:1: arc radius 1.5875 mm is equal to the tool radius 1.5875 mm on the tool's side"
+        ),
+        "{e}"
+    );
+    // The same in mm, 1 µm larger than the tool: the tool centre turns 1 µm about (0, 0).
+    let text = "G21 F100\nT1 M6\nG0 X3.2 Y1.5885\nG41 G0 X0 Y1.5885\nG3 X0 Y1.5885 I0 J-1.5885 Z-1\nM2\n";
+    let b = blocks_with(text, &m).unwrap();
+    let Motion::Arc { to, center, .. } = b[2].motion else {
+        panic!("{b:?}")
+    };
+    let r = (to[0] - center[0]).hypot(to[1] - center[1]);
+    assert!(
+        (r - 1e-6).abs() < 1e-12 && center[0].abs() < 1e-15,
+        "{r} {center:?}"
+    );
+}

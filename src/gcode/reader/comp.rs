@@ -189,6 +189,18 @@ impl Reader {
             if matches!(b.motion, Motion::Arc { .. }) {
                 return self.entry_arc(b, &elem);
             }
+            let length = dist(elem.start(), elem.end());
+            if length <= r + JOIN {
+                // LinuxCNC "G41, G42": "The lead in move must be at least as long as the tool
+                // radius"; its interpreter refuses one not longer.
+                let m = format!(
+                    "the G41/G42 entry move is {} mm long, not longer than the tool radius {} mm \
+                     (LinuxCNC: \"Length of cutter compensation entry move is not greater than the tool radius\")",
+                    shown_mm(length),
+                    shown_mm(r)
+                );
+                return Err(self.error(b.line, 1, m));
+            }
             self.comp.entry = Some(b);
         } else {
             self.emit_plain(b);
