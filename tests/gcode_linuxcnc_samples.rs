@@ -417,3 +417,25 @@ fn tool_as_large_as_the_hole() {
         "{r} {center:?}"
     );
 }
+
+/// "M61 Set Current Tool": `M61 Q-` makes Q the tool in the spindle without a change; "the
+/// tool length offset is not changed by M61, use G43 after the M61". LinuxCNC's offsets.ngc
+/// loops `M61Q#<n>G43` over tools 0 … 4. With tool 3 of length 10 mm, `M61 Q3` then `G43`
+/// and `G0 Z0` end at machine Z10; M61 alone leaves the offset as it was. "It is an error if
+/// Q- is not 0 or greater".
+#[test]
+fn m61_sets_the_current_tool() {
+    let m = Machine::from_toml("[tool.3]\nlength_mm = 10\n", "m.toml").unwrap();
+    let run = |text: &str| blocks_with(text, &m).map(|b| b.iter().filter_map(end_of).collect::<Vec<_>>());
+    let z = |text: &str| run(text).unwrap().last().unwrap()[2] * 1e3;
+    assert_eq!(z("M61 Q3\nG0 Z0\nG43\nG0 Z0\n"), 10.0);
+    assert_eq!(z("M61 Q3\nG0 Z0\n"), 0.0);
+    assert_eq!(z("M61Q3G43\nG0 Z0\nM61 Q0 G43\nG0 Z0\n"), 0.0);
+    assert_eq!(
+        run("M61\n").unwrap_err(),
+        "t.ngc:1:1: M61 needs Q (the tool number, 0 or greater)"
+    );
+    assert!(run("M61 Q-1\n")
+        .unwrap_err()
+        .starts_with("t.ngc:1:5: Q-1 out of range"));
+}

@@ -126,6 +126,8 @@ struct LineCodes {
     cancel: Option<u32>,
     stop: Option<(StopKind, u32)>,
     tool_change: bool,
+    /// M61 on the line (its column).
+    set_tool: Option<u32>,
     comp: Option<(i64, u32)>,
     tlo: Option<(i64, u32)>,
     /// The group-0 code (G4, G10, G28, G30, G53, G92…, G5.3), in tenths.

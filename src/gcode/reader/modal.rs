@@ -176,6 +176,10 @@ impl Reader {
                 codes.tool_change = true;
                 None
             }
+            610 => {
+                codes.set_tool = Some(col);
+                None
+            }
             // Spindle, coolant, override switches: no motion.
             30 | 40 | 50 | 70 | 80 | 90 | 480 | 490 => None,
             _ => return Err(self.error(line, col, format!("unsupported M{}", fmt_code(code)))),
