@@ -131,6 +131,8 @@ fn errors_are_located_in_the_file() {
             ("noend.ngc", "\no<noend> sub\nG0 X1\n"),
             ("calls.ngc", "o<nosub> call\n"),
             ("calls2.ngc", "G0 X2\no<noend> call\n"),
+            ("percent.ngc", "o<percent> sub\n%\no<percent> endsub\n"),
+            ("calls3.ngc", "%\no<percent> call\n%\n"),
         ],
     );
     let m = Machine::default();
@@ -155,6 +157,10 @@ fn errors_are_located_in_the_file() {
             dir.join("noend.ngc").display()
         )
     );
+    // `%` demarcates the program ("File Requirements"), not a subroutine file.
+    let e = ends(file_reader(&dir.join("calls3.ngc"), &m)).unwrap_err();
+    let at = format!("{}:2:1: ", dir.join("percent.ngc").display());
+    assert!(e.starts_with(&at), "{e}");
     std::fs::remove_dir_all(dir).unwrap();
 }
 

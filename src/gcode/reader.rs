@@ -300,7 +300,13 @@ impl Reader {
     fn percent_line(&mut self, line: u32, raw: &str) -> Result<bool, ProgramError> {
         let text = raw.trim();
         let is_percent = text == "%";
-        match self.percent {
+        // Only the program is demarcated; in a subroutine file `%` is no word.
+        let state = if self.src == 0 {
+            self.percent
+        } else {
+            Percent::None
+        };
+        match state {
             Percent::Unknown if text.is_empty() => return Ok(true),
             Percent::Unknown if is_percent => {
                 self.percent = Percent::Open(line);
