@@ -7,6 +7,7 @@ use crate::config::ranges;
 use crate::config::{CornerMode, Machine};
 use crate::engine::Engine;
 use crate::feed::ProfileKind;
+use crate::gcode::ProgramSource;
 use crate::servo::{Kind, PARAMETERS as SERVO};
 use fmi2::table::Entry;
 use fmi2::Causality::{Input as IN, Output as OUT, Parameter as PAR};
@@ -414,7 +415,8 @@ impl CncMotion {
         let name = &self.machine_file;
         let path = self.resolve(name)?;
         let text = std::fs::read_to_string(&path).map_err(|e| format!("{name}: {e}"))?;
-        let file = Machine::from_toml(&text, name).map_err(|e| e.to_string())?;
+        let dir = path.parent().unwrap_or(Path::new(""));
+        let file = Machine::from_toml_in(&text, name, dir).map_err(|e| e.to_string())?;
         self.over_file(file)
     }
 
@@ -432,14 +434,15 @@ impl CncMotion {
             self.machine.corner = enum_item(&CornerMode::ALL, self.corner_index)?;
         }
         self.machine.check()?;
-        let text = if self.program.trim().is_empty() {
+        // A program file's directory is searched for subroutine files, as the CLI searches it.
+        let source = if self.program.trim().is_empty() {
             let path = self.resolve(&self.program_file)?;
-            crate::gcode::source::read_program_file(&path, &self.program_file)?
+            let text = crate::gcode::source::read_program_file(&path, &self.program_file)?;
+            ProgramSource::FileText(Arc::from(text), path)
         } else {
-            self.program.clone()
+            ProgramSource::Text(Arc::from(self.program.as_str()))
         };
-        let engine =
-            Engine::new(Arc::from(text), self.source_name(), &self.machine).map_err(|e| e.to_string())?;
+        let engine = Engine::new(source, self.source_name(), &self.machine).map_err(|e| e.to_string())?;
         self.engine = Some(engine.with_servo(self.servo_enabled));
         Ok(())
     }

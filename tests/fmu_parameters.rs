@@ -332,3 +332,92 @@ fn a_serialized_state_keeps_the_machine_of_its_machine_file() {
         assert_eq!(ea.axes(), eb.axes());
     }
 }
+
+/// Step an initialized instance to the end of its program; the command position (mm).
+fn run_to_end(fmu: &Fmu, c: Component) -> [f64; 3] {
+    let step = sym!(fmu, "fmi2DoStep", FnDoStep);
+    let get_bool = sym!(fmu, "fmi2GetBoolean", FnGetBool);
+    let finished = fmu.vr("status.finished");
+    let (mut n, mut done) = (0u32, 0);
+    while done == 0 {
+        assert_eq!(
+            unsafe { step(c, f64::from(n) * 1e-2, 1e-2, 1) },
+            OK,
+            "{}",
+            fmu.last_log()
+        );
+        assert_eq!(unsafe { get_bool(c, &finished, 1, &mut done) }, OK);
+        n += 1;
+        assert!(n < 100_000);
+    }
+    ["x", "y", "z"].map(|a| 1e3 * fmu.real(c, &format!("{a}.command.position")))
+}
+
+/// Subroutine files in the FMU as in the CLI (LinuxCNC "O Codes", "Calling Files"):
+/// `programFile` searches its own directory, an inline `program` only the machine file's
+/// `subroutine_path`, which is relative to the machine file (resolved like `machineFile`).
+#[test]
+fn subroutine_files_from_program_file_and_machine_file() {
+    let dir = resources_with("subs", &[]);
+    for (f, text) in [
+        ("progs/main.ngc", "G21 F3000\no<Beside> call [4]\nM2\n"),
+        ("progs/beside.ngc", "o<beside> sub\nG1 X#1 Y1\no<beside> endsub\n"),
+        ("cfg/m.toml", "subroutine_path = [\"../lib\"]\n"),
+        ("lib/far.ngc", "o<far> sub\nG1 X2 Y3\no<far> endsub\n"),
+    ] {
+        std::fs::create_dir_all(dir.join(f).parent().unwrap()).unwrap();
+        std::fs::write(dir.join(f), text).unwrap();
+    }
+    let fmu = Fmu::load();
+    let c = fmu.instantiate_in("beside", &dir);
+    assert_eq!(
+        set(&fmu, c, "programFile", &Value::String("progs/main.ngc".into())),
+        OK
+    );
+    enter_init(&fmu, c);
+    assert_eq!(
+        fmu.call("fmi2ExitInitializationMode", c),
+        OK,
+        "{}",
+        fmu.last_log()
+    );
+    let end = run_to_end(&fmu, c);
+    assert!(
+        (end[0] - 4.0).abs() < 1e-9 && (end[1] - 1.0).abs() < 1e-9,
+        "{end:?}"
+    );
+    fmu.free(c);
+    let c = fmu.instantiate_in("far", &dir);
+    let program = Value::String("G21 F3000\no<far> call\nM2\n".into());
+    assert_eq!(set(&fmu, c, "program", &program), OK);
+    assert_eq!(
+        set(&fmu, c, "machineFile", &Value::String("cfg/m.toml".into())),
+        OK
+    );
+    enter_init(&fmu, c);
+    assert_eq!(
+        fmu.call("fmi2ExitInitializationMode", c),
+        OK,
+        "{}",
+        fmu.last_log()
+    );
+    let end = run_to_end(&fmu, c);
+    assert!(
+        (end[0] - 2.0).abs() < 1e-9 && (end[1] - 3.0).abs() < 1e-9,
+        "{end:?}"
+    );
+    fmu.free(c);
+    // Without the machine file the inline program has nowhere to look.
+    let c = fmu.instantiate_in("none", &dir);
+    assert_eq!(set(&fmu, c, "program", &program), OK);
+    enter_init(&fmu, c);
+    assert_eq!(fmu.call("fmi2ExitInitializationMode", c), ERROR);
+    assert!(
+        fmu.last_log()
+            .contains("program:2:1: o<far> call: the program has no o<far> sub"),
+        "{}",
+        fmu.last_log()
+    );
+    fmu.free(c);
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -1,6 +1,8 @@
 //! Fuzz harness (issue 11): mutates the corpus programs (corpus/*.ngc,
 //! resources/default.ngc), programs with issue 20's words (G10 L2 R, polar, G5.x, `%`, L
-//! repeats, group-0 codes with motion) and machine files, runs each case through the library with a bounded
+//! repeats, group-0 codes with motion; return from a nested `if`, G80 beside a motion code, F0,
+//! G41/G42 entry arcs, G18/G19 arcs in a rotated system, a subroutine file through the machine
+//! file's `subroutine_path`) and machine files, runs each case through the library with a bounded
 //! number of ticks, and sorts the outcome:
 //!
 //! - `finished`: the programmed end reached exactly, every tick finite, no jump, axis velocity and
@@ -89,7 +91,14 @@ fn corpus() -> Vec<(String, String)> {
 /// Issue 20: programs with the words the reader runs as LinuxCNC does — G10 L2/L20 with R,
 /// polar `@` `^` (also in a cycle), G5 / G5.1 / G5.2…G5.3, `%` demarcation, canned-cycle L
 /// repeats in G90 and G91, group-0 codes (G4, G92, G53) with motion — mutated like the corpus.
-const LINUXCNC: [(&str, &str); 5] = [
+const LINUXCNC: [(&str, &str); 6] = [
+    (
+        "samples.ngc",
+        "G21 G90 G17 G40 G80 G00 X0 Y0 Z1\nF0\nF1000\no100 sub\no110 if [#1 GT 0]\no110 return [#1 * 2]\n\
+         o110 endif\no100 endsub [1]\no100 call [3]\nG1 X#<_value> Y1\nG80 G1 X2\no<fuzz_sub> call [1]\n\
+         G10 L2 P1 X1 Y1 R30\nG54 G0 X3 Y0 Z1\nG18 G2 X5 Z1 I1 K0\nG19 G3 Y2 Z1 R1\nG17 G0 Z1\nG10 L2 P1 X0 Y0 R0\n\
+         G0 X-5 Y0\nG41.1 D2\nG3 X5 Y0 I5 J0\nG1 Y5\nG40 G0 X10 Y10\nM2\n",
+    ),
     (
         "rotation.ngc",
         "G21 G90 G17 F1500\nG10 L2 P1 X10 Y5 R30\nG54 G1 X5 Y0\nG3 X0 Y5 I-5 J0\nG91 G1 X2 Y1\n\
@@ -130,7 +139,7 @@ const EXTREME: [&str; 12] = [
     "-3.5",
     "0.0001",
 ];
-const NOISE: [&str; 23] = [
+const NOISE: [&str; 29] = [
     "G",
     "X",
     "Y",
@@ -154,6 +163,12 @@ const NOISE: [&str; 23] = [
     "R90 ",
     "G10 L2 P1 R45\n",
     "%\n",
+    "G80 ",
+    "G18 ",
+    "G41.1 D1 ",
+    "o110 return\n",
+    "o<fuzz_sub> call [2]\n",
+    "O<fuzz_sub> callsub\n",
 ];
 
 /// Start and end of every number in `text`.
@@ -222,15 +237,34 @@ fn mutate(text: &mut String, rng: &mut Rng) {
     }
 }
 
-/// The machine file of a case: the corpus machine or an empty one, mutated a few times, or a
-/// key of the table set to an extreme value.
+/// The subroutine file the programs call (`o<fuzz_sub> call`): a directory of its own under
+/// the temporary one, written once.
+const FUZZ_SUB: &str =
+    "o<fuzz_sub> sub\no1 repeat [#1]\nG91 G1 X0.5 Y0.25\no1 endrepeat\nG90\no<fuzz_sub> endsub [#1]\n";
+
+fn sub_dir() -> &'static std::path::Path {
+    static DIR: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("cnc_fuzz_subs_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("fuzz_sub.ngc"), FUZZ_SUB).unwrap();
+        dir
+    })
+}
+
+/// A machine file's text with `subroutine_path` naming the fuzz subroutine's directory.
+fn with_subs(machine: &str) -> String {
+    format!(
+        "subroutine_path = [{:?}]\n{machine}",
+        sub_dir().display().to_string()
+    )
+}
+
+/// The machine file of a case: the corpus machine or an empty one (with the subroutine
+/// directory), mutated a few times, or a key of the table set to an extreme value.
 fn machine_text(rng: &mut Rng) -> String {
     let dmu = include_str!("../corpus/dmu50_840d.toml");
-    let mut text = if rng.below(2) == 0 {
-        dmu.to_string()
-    } else {
-        String::new()
-    };
+    let mut text = with_subs(if rng.below(2) == 0 { dmu } else { "" });
     if rng.below(4) == 0 {
         if rng.below(2) == 0 {
             mutate(&mut text, rng);
@@ -264,8 +298,14 @@ impl Outcome {
 }
 
 /// An error is located when its line is in the file (or one past the end) and its column in
-/// that line (or one past its end).
+/// that line (or one past its end); an error in the subroutine file is located in that file.
 fn located(e: &ProgramError, text: &str, file: &str) -> bool {
+    let sub = sub_dir().join("fuzz_sub.ngc").display().to_string();
+    let (text, file) = if e.file == sub {
+        (FUZZ_SUB, sub.as_str())
+    } else {
+        (text, file)
+    };
     let lines: Vec<&str> = text.split('\n').collect();
     let line_ok = e.file == file && e.line >= 1 && (e.line as usize) <= lines.len() + 1;
     let width = lines.get(e.line as usize - 1).map_or(0, |l| l.len());
@@ -383,9 +423,10 @@ fn mutated_corpus_programs_and_machines() {
 
 #[test]
 fn harness_classifies_known_cases() {
-    let dmu = include_str!("../corpus/dmu50_840d.toml");
+    let dmu = with_subs(include_str!("../corpus/dmu50_840d.toml"));
     for (_, text) in corpus() {
-        assert_eq!(run_case(&text, dmu).0, Outcome::Finished, "{text}");
+        let (outcome, detail) = run_case(&text, &dmu);
+        assert_eq!(outcome, Outcome::Finished, "{text}\n{detail}");
     }
     let ok = "G21 G1 X1 F100\n";
     assert_eq!(

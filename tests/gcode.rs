@@ -145,7 +145,7 @@ fn refusals_name_the_place() {
             "G1 X[1+2 F100\n",
             "t.ngc:1:10: X: expected ']'",
         ),
-        ("G1 X1\n", "t.ngc:1:1: G1 with no feed rate: F was never set"),
+        ("G1 X1\n", "t.ngc:1:1: G1 with a zero feed rate (F0, or F never set)"),
         (
             "X1\n",
             "t.ngc:1:1: axis words without a motion mode (G0, G1, G2, G3, G5, G5.1, G5.2, G73, G81…G83)",
@@ -165,7 +165,8 @@ fn refusals_name_the_place() {
         ),
         ("G4\n", "t.ngc:1:1: G4 needs P (dwell time in seconds)"),
         ("M98 P100\n", "t.ngc:1:1: unsupported M98"),
-        ("G1 X1 F0\n", "t.ngc:1:7: feed F0 must be positive"),
+        ("G1 X1 F0\n", "t.ngc:1:1: G1 with a zero feed rate (F0, or F never set)"),
+        ("G1 X1 F-1\n", "t.ngc:1:7: feed F-1 must not be negative"),
         (
             "G2 X10 Y0 R4 F100\n",
             "t.ngc:1:11: G2: R4 is smaller than half the chord (5.0000 mm)",

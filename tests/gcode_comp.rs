@@ -186,10 +186,12 @@ fn gouges_are_located_errors() {
         e.starts_with("t.ngc:4:1: concave corner cannot be reached by the tool (radius 5.0000 mm)"),
         "{e}"
     );
-    let e = run("G0 X0 Y0\nG41.1 D2 G2 X2 Y0 R1 F100\n", &m).unwrap_err();
-    assert_eq!(
-        e,
-        "t.ngc:2:1: the G41/G42 entry move must be a straight line (G0/G1)"
+    // An entry arc runs (LinuxCNC "Programming Entry Moves"), if longer than the tool radius.
+    assert!(run("G0 X0 Y0\nG41.1 D2 G2 X2 Y0 R1 F100\n", &m).is_ok());
+    let e = run("G0 X0 Y0\nG41.1 D4 G2 X2 Y0 R1 F100\n", &m).unwrap_err();
+    assert!(
+        e.starts_with("t.ngc:2:1: the G41/G42 entry arc ends 2.0000 mm from its start, not farther than the tool radius 2.0000 mm"),
+        "{e}"
     );
     let e = run("G41.1 D2\nG42.1 D2\n", &m).unwrap_err();
     assert!(

@@ -100,7 +100,7 @@ fn inverse_time_errors() {
     );
     assert_eq!(
         error("G1 X1 F100\nG93 G1 X2 F1\nG94 G1 X3\n"),
-        "t.ngc:3:5: G1 with no feed rate: F was never set"
+        "t.ngc:3:5: G1 with a zero feed rate (F0, or F never set)"
     );
     assert!(error("G93 G1 X1 F0\n").starts_with("t.ngc:1:11: inverse-time F0 must be positive"));
     assert_eq!(

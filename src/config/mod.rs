@@ -196,6 +196,8 @@ pub struct MachineFile {
     pub work_offset: Option<std::collections::BTreeMap<String, nc::PointFile>>,
     pub home: Option<std::collections::BTreeMap<String, nc::PointFile>>,
     pub max_loop_iterations: Option<i64>,
+    /// Directories of subroutine files, relative to the machine file's directory.
+    pub subroutine_path: Option<Vec<String>>,
     /// Length unit of the file's numbers: mm (default) or inch (`units.rs`).
     pub units: Option<units::Units>,
 }
@@ -210,8 +212,22 @@ pub use crate::si::{MM, MM_MIN};
 pub const DEFAULT_ARC_TOLERANCE_M: f64 = 0.028e-3;
 
 impl Machine {
-    /// Parse a machine file; errors name `file:line:col`.
+    /// Parse a machine file; errors name `file:line:col`. `file` is its path too: relative
+    /// `subroutine_path` entries are taken from its directory.
     pub fn from_toml(text: &str, file: &str) -> Result<Machine, crate::error::ProgramError> {
+        let dir = std::path::Path::new(file)
+            .parent()
+            .unwrap_or(std::path::Path::new(""));
+        Machine::from_toml_in(text, file, dir)
+    }
+
+    /// `from_toml` for a file named `file` in messages that lies in directory `dir` (the FMU
+    /// resolves `machineFile` against its resources).
+    pub fn from_toml_in(
+        text: &str,
+        file: &str,
+        dir: &std::path::Path,
+    ) -> Result<Machine, crate::error::ProgramError> {
         let parsed: MachineFile = toml::from_str(text).map_err(|e| {
             let (line, col) = e.span().map(|span| line_col(text, span.start)).unwrap_or((1, 1));
             crate::error::ProgramError::new(file, line, col, e.message().to_string())
@@ -220,20 +236,21 @@ impl Machine {
             let (line, col) = locate(text, &e.key);
             crate::error::ProgramError::new(file, line, col, e.message)
         };
-        let m = Machine::apply(&parsed).map_err(located)?;
+        let m = Machine::apply(&parsed, dir).map_err(located)?;
         ranges::check_machine(&m).map_err(located)?;
         Ok(m)
     }
 
     /// Apply a parsed machine file over the defaults and check the values.
+    /// Relative `subroutine_path` entries are taken from the current directory.
     pub fn from_file(f: &MachineFile) -> Result<Machine, String> {
-        let m = Machine::apply(f).map_err(|e| e.message)?;
+        let m = Machine::apply(f, std::path::Path::new("")).map_err(|e| e.message)?;
         m.check()?;
         Ok(m)
     }
 
-    /// A parsed machine file over the defaults, not yet range-checked.
-    fn apply(f: &MachineFile) -> Result<Machine, ranges::RangeError> {
+    /// A parsed machine file over the defaults, not yet range-checked; `dir` is its directory.
+    fn apply(f: &MachineFile, dir: &std::path::Path) -> Result<Machine, ranges::RangeError> {
         let f = &units::to_mm(f);
         let mut m = Machine::default();
         m.nc.inch = f.units == Some(units::Units::Inch);
@@ -296,6 +313,9 @@ impl Machine {
         }
         if let Some(n) = f.max_loop_iterations {
             m.nc.set_max_loop_iterations(n)?;
+        }
+        if let Some(dirs) = &f.subroutine_path {
+            m.nc.set_subroutine_path(dirs, dir)?;
         }
         if let Some(servo) = &f.servo {
             for (i, s) in [&servo.x, &servo.y, &servo.z].into_iter().enumerate() {

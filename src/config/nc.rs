@@ -6,6 +6,7 @@ use super::ranges::{number, significant, RangeError, INCH_MM};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 /// How cutter radius compensation passes an outside (convex) corner.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -53,7 +54,15 @@ pub struct NcSetup {
     pub max_loop_iterations: u64,
     /// An inch machine (`units = "inch"`): programs start in G20.
     pub inch: bool,
+    /// Directories searched for subroutine files (`subroutine_path`, LinuxCNC's
+    /// `[RS274NGC]SUBROUTINE_PATH`), resolved against the machine file's directory.
+    pub subroutine_path: Vec<PathBuf>,
 }
+
+/// Most `subroutine_path` directories (LinuxCNC's MAX_SUB_DIRS).
+pub const MAX_SUBROUTINE_DIRS: usize = 10;
+/// Longest `subroutine_path` entry (bytes).
+pub const MAX_SUBROUTINE_DIR_BYTES: usize = 4096;
 
 /// Default and largest `max_loop_iterations`.
 pub const DEFAULT_MAX_LOOP_ITERATIONS: u64 = 1_000_000;
@@ -76,6 +85,29 @@ impl NcSetup {
             self.max_loop_iterations,
             MAX_LOOP_ITERATIONS,
         )
+    }
+
+    /// `subroutine_path`: at most MAX_SUBROUTINE_DIRS directories, each non-empty and at most
+    /// MAX_SUBROUTINE_DIR_BYTES long, relative ones taken from `base` (the machine file's
+    /// directory). Whether they exist is seen when a call looks there.
+    pub fn set_subroutine_path(&mut self, dirs: &[String], base: &Path) -> Result<(), RangeError> {
+        let key = "subroutine_path".to_string();
+        if dirs.len() > MAX_SUBROUTINE_DIRS {
+            let m = format!(
+                "subroutine_path: {} directories, at most {MAX_SUBROUTINE_DIRS} (LinuxCNC's SUBROUTINE_PATH)",
+                dirs.len()
+            );
+            return Err(range_error(key, m));
+        }
+        for d in dirs {
+            if d.trim().is_empty() || d.len() > MAX_SUBROUTINE_DIR_BYTES || d.contains('\0') {
+                let m =
+                    format!("subroutine_path: each entry a directory, 1 … {MAX_SUBROUTINE_DIR_BYTES} bytes");
+                return Err(range_error(key, m));
+            }
+            self.subroutine_path.push(base.join(d));
+        }
+        Ok(())
     }
 
     /// `max_loop_iterations`, 1 … MAX_LOOP_ITERATIONS.
@@ -102,6 +134,7 @@ impl Default for NcSetup {
             home: [[0.0; 3]; 2],
             max_loop_iterations: DEFAULT_MAX_LOOP_ITERATIONS,
             inch: false,
+            subroutine_path: Vec::new(),
         }
     }
 }

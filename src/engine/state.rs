@@ -15,8 +15,9 @@ use crate::valid::{at_most, within};
 // 8: seed 004's transition in time (no arc-length table), chains' source-line marks;
 // 9: postcard instead of bincode; time as whole ticks and a phase, no servo clock;
 // 10: speed bands on path blocks and the banded S-curve profile; 11: a window segment's stop
-// limit NaN until needed.
-const STATE_VERSION: u32 = 12;
+// limit NaN until needed; 12: the reader's subroutine files (a source on every place), the
+// centre of a held G41/G42 entry arc; 13: a smooth span keeps the moves it stands for.
+const STATE_VERSION: u32 = 13;
 
 /// Fields whose numbers may be more than finite and moderate (see `valid::numbers`): the
 /// planner's "not computed yet" and "no junction limit", a quintic's power coefficients.
@@ -55,11 +56,12 @@ impl Engine {
         if restored.machine != self.machine {
             return Err("engine state was saved for another machine configuration".into());
         }
+        // The program attached first: the reader checks its subroutine files where it finds them.
+        restored.program = self.program.clone();
+        restored.reader.attach_text(self.program.clone());
         restored
             .check_state(self.program.text())
             .map_err(|e| format!("engine state: {e}"))?;
-        restored.program = self.program.clone();
-        restored.reader.attach_text(self.program.clone());
         restored.refresh_outputs();
         *self = restored;
         Ok(())
@@ -67,8 +69,7 @@ impl Engine {
 }
 
 impl Engine {
-    /// Every field of a restored state (its `program` not yet attached; `text` is the program
-    /// it is restored for): the numbers (`valid::numbers`), the clock, each stage's own
+    /// Every field of a restored state (`text` is the program it is restored for): the numbers (`valid::numbers`), the clock, each stage's own
     /// counters, indices and relations, and the outputs it holds as the interpolator and the
     /// drives give them.
     fn check_state(&mut self, text: Option<&str>) -> Result<(), String> {

@@ -164,7 +164,7 @@ fn rise_distance(u: f64, v1: f64, v_hi: f64, a: f64, j: f64) -> (f64, f64) {
 }
 
 /// Peak speed v_c ∈ [v_hi, v_cap] with D(v_c) = length, given D(v_hi) ≤ length < D(v_cap).
-fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) -> f64 {
+pub(super) fn solve_peak(length: f64, v_in: f64, v_out: f64, v_cap: f64, a: f64, j: f64) -> f64 {
     let v_hi = v_in.max(v_out);
     let ac = a * a / j;
     let u_max = (v_cap - v_hi).max(0.0).sqrt();
@@ -213,7 +213,7 @@ pub fn lowest_exit(length: f64, v_in: f64, target: f64, lim: &Limits) -> f64 {
 /// D(v_in, x) is unimodal in x (see plan/mod.rs): the largest exit below v_out if a stop fits, else
 /// the lowest one above v_out. In the speed drop y = v_in − x, D = L is one of the roots of
 /// [`drop_roots`] (exactly one lies in the interval searched); bisection only if rounding loses it.
-fn slow_down_exit(length: f64, v_in: f64, v_out: f64, lim: &Limits) -> f64 {
+pub(super) fn slow_down_exit(length: f64, v_in: f64, v_out: f64, lim: &Limits) -> f64 {
     let d = |x: f64| ramp_distance(v_in, x, lim);
     let g = |y: f64| d(v_in - y);
     let roots = drop_roots(length, v_in, lim.a_max, lim.j_max);

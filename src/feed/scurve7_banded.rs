@@ -17,17 +17,19 @@
 //! fastest. Each of its pieces is one phase of constant jerk (±J_k or 0); the ramp time and
 //! distance are sums over the phases, in closed form. A speed drop is the time reverse of the rise between the same speeds. A block is ramp,
 //! cruise, ramp as in scurve7.rs; the peak, the largest entry and exit are found by regula falsi on
-//! the ramp distance (increasing in the far speed), bounded.
+//! the ramp distance (increasing in the far speed), bounded, or, where the answer lies in the
+//! band the ramps start in, by scurve7's closed form with that band's limits, which two
+//! evaluations of the distance confirm (`crossing_near`).
 
 use super::bands::{Banded, MAX_BANDS};
-use super::roots::falsi_from;
+use super::roots::{crossing_near, falsi_from};
 use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
-use super::{FeedLaw, Kin};
+use super::{scurve7, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
 
 mod envelope;
 pub use envelope::Rise;
-use envelope::{rise, rise_time_distance};
+use envelope::{band_below, rise, rise_time_distance};
 
 /// One phase of constant jerk, with the state at its start.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -65,6 +67,18 @@ pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
     Rise::from(b, v0.max(0.0)).max_speed(length)
 }
 
+/// One band's limits for scurve7's closed forms: inside one band the banded law is scurve7's
+/// (equal bands are no bands), so where its answer stays in the band it is the crossing to
+/// rounding, and the regula falsi only confirms it (`crossing_near`).
+fn one_band(a: f64, j: f64) -> Limits {
+    Limits {
+        v_max: f64::INFINITY,
+        a_max: a,
+        j_max: j,
+        snap_max: f64::INFINITY,
+    }
+}
+
 impl Rise<'_> {
     /// `max_speed` from this rise's speed: every ramp from it shares its forward envelope.
     pub fn max_speed(&self, length: f64) -> f64 {
@@ -74,6 +88,14 @@ impl Rise<'_> {
             let d = self.time_distance(v).1;
             (d <= length, d - length)
         };
+        // The crossing in the band the rise starts in: scurve7's closed form there.
+        let seed = self.first_band().and_then(|(band_top, a, j)| {
+            let x0 = v0 + scurve7::max_rise(length, v0, &one_band(a, j));
+            (x0 < band_top).then_some(x0)
+        });
+        if let Some(v) = seed.and_then(|x0| crossing_near(x0, v0, f64::INFINITY, |v| fits(v).1)) {
+            return v;
+        }
         // The bracket's ends with the distances already solved there, for the regula falsi.
         let top = self.banded().top.v_max;
         let (mut good, mut g_good) = (v0, fits(v0).1);
@@ -111,7 +133,18 @@ pub fn lowest_exit(b: &Banded, length: f64, v_in: f64, target: f64) -> f64 {
     if d_stop > length {
         return 0.0;
     }
-    falsi_from(0.0, d_stop - length, target, d_target - length, |x| d(x) - length)
+    stop_fits_exit(b, length, v_in, target, d_stop, d_target)
+}
+
+/// The largest exit x ≤ `target` whose drop from `v_in` fits in `length` where a stop fits
+/// (`d_stop`, `d_target`: the drops to 0 and to the target, solved already): scurve7's closed
+/// form in the band of v_in where the exit stays in it, else regula falsi.
+fn stop_fits_exit(b: &Banded, length: f64, v_in: f64, target: f64, d_stop: f64, d_target: f64) -> f64 {
+    let g = |x: f64| ramp_distance(b, v_in, x) - length;
+    let (floor, a, j) = band_below(b, v_in);
+    let x0 = scurve7::slow_down_exit(length, v_in, target, &one_band(a, j));
+    let near = (x0 > floor).then(|| crossing_near(x0, 0.0, target, g)).flatten();
+    near.unwrap_or_else(|| falsi_from(0.0, d_stop - length, target, d_target - length, g))
 }
 
 /// One block's profile under bands: ramp, cruise, ramp.
@@ -145,6 +178,19 @@ impl Scurve7Banded {
 /// the feed if the length allows, the highest peak otherwise; an exit that cannot be reached
 /// becomes the closest one that can (reported in `v_end`).
 pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scurve7Banded {
+    let (length, v_in, v_c, v_end) = speeds(b, length, v_in, v_out, v_feed);
+    build(b, length, v_in, v_c, v_end)
+}
+
+/// `plan`'s duration and cruise speed alone, the same bit for bit, without building its phases
+/// (the chain decisions compare block times).
+pub fn plan_time(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64) {
+    let (length, v_in, v_c, v_end) = speeds(b, length, v_in, v_out, v_feed);
+    (duration(b, length, v_in, v_c, v_end), v_c)
+}
+
+/// `plan`'s length, entry, cruise and exit speeds.
+fn speeds(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64, f64, f64) {
     let finite = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
     let (length, v_in, v_out) = (finite(length), finite(v_in), finite(v_out));
     let mut v_feed = finite(v_feed);
@@ -163,10 +209,7 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
             let d_stop = d(v_in, 0.0);
             if d_stop <= length {
                 // A stop fits: the largest exit below v_out whose drop fits (`lowest_exit`).
-                (
-                    v_in,
-                    falsi_from(0.0, d_stop - length, v_out, d_through - length, drop),
-                )
+                (v_in, stop_fits_exit(b, length, v_in, v_out, d_stop, d_through))
             } else {
                 // It does not: the smallest drop that fits, above v_out.
                 (
@@ -193,14 +236,57 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
             } else {
                 // At v_hi one of the two ramps is none: the total is the one ramp between.
                 let t_hi = d_through + 0.0;
-                falsi_from(v_hi, t_hi - length, v_feed, t_feed - length, |v| {
-                    total(v) - length
-                })
+                let g = |v: f64| total(v) - length;
+                // Both ramps in one band: scurve7's peak there.
+                let band = |r: &Rise| r.first_band();
+                let seed = match (band(&up), down.as_ref().map_or(band(&up), band)) {
+                    (Some((top, a, j)), Some(other)) if other.0 == top => {
+                        let x0 = scurve7::solve_peak(length, v_in, v_out, v_feed, a, j);
+                        (x0 < top).then_some(x0)
+                    }
+                    _ => None,
+                };
+                let near = seed.and_then(|x0| crossing_near(x0, v_hi, v_feed, g));
+                near.unwrap_or_else(|| falsi_from(v_hi, t_hi - length, v_feed, t_feed - length, g))
             }
         };
         (v_c, v_out)
     };
-    build(b, length, v_in, v_c, v_end)
+    (length, v_in, v_c, v_end)
+}
+
+/// The duration `build` sums: the rise's phases, the cruise, the drop's phases in reverse, each
+/// added when it is longer than 0, in that order.
+fn duration(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> f64 {
+    let ramp = |from: f64| {
+        let (mut taus, mut n, mut s) = ([0.0; 4 * (MAX_BANDS + 1)], 0, 0.0);
+        rise(b, from, v_c, |p| {
+            let (tau, _, ds) = p.run();
+            if n < taus.len() {
+                taus[n] = tau;
+                n += 1;
+            }
+            s += ds;
+        });
+        (taus, n, s)
+    };
+    let (up, n_up, s_up) = ramp(v_in);
+    let (down, n_down, s_down) = if v_end == v_in {
+        (up, n_up, s_up)
+    } else {
+        ramp(v_end)
+    };
+    let ramps = s_up + s_down;
+    let cruise = if v_c > 0.0 {
+        ((length - ramps) / v_c).max(0.0)
+    } else {
+        0.0
+    };
+    let phases = up[..n_up]
+        .iter()
+        .chain([&cruise])
+        .chain(down[..n_down].iter().rev());
+    phases.filter(|&&tau| tau > 0.0).fold(0.0, |t, &tau| t + tau)
 }
 
 fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {
@@ -328,220 +414,4 @@ impl FeedLaw for Scurve7Banded {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::feed::bands::{Band, Bands};
-    use crate::feed::{scurve7, BlockRequest, Limits, ProfileKind};
-
-    fn limits(v_max: f64, a_max: f64, j_max: f64) -> Limits {
-        Limits {
-            v_max,
-            a_max,
-            j_max,
-            snap_max: 1e9,
-        }
-    }
-
-    fn band(v_top: f64, a_max: f64, j_max: f64) -> Band {
-        Band { v_top, a_max, j_max }
-    }
-
-    /// Bands whose limits are all the same are no bands: ramps, entries, exits and blocks equal
-    /// scurve7's closed forms (the 7-phase law, which equals Ruckig rest to rest).
-    #[test]
-    fn equal_bands_are_scurve7() {
-        let top = limits(0.3, 2.0, 50.0);
-        let bands = Bands::below(
-            &top,
-            &[band(0.05, 2.0, 50.0), band(0.12, 2.0, 50.0), band(0.2, 2.0, 50.0)],
-        );
-        let b = Banded {
-            kind: ProfileKind::Scurve7,
-            top: &top,
-            bands: &bands,
-        };
-        for (v1, v2) in [(0.0, 0.3), (0.02, 0.17), (0.1, 0.11), (0.0, 0.01), (0.25, 0.3)] {
-            let ours = ramp_distance(&b, v1, v2);
-            let theirs = scurve7::ramp_distance(v1, v2, &top);
-            assert!(
-                (ours - theirs).abs() <= 1e-12 * theirs,
-                "{v1} → {v2}: {ours} vs {theirs}"
-            );
-        }
-        for (length, v_in, v_out) in [
-            (0.05, 0.0, 0.0),
-            (0.002, 0.0, 0.0),
-            (0.01, 0.1, 0.02),
-            (0.3, 0.05, 0.0),
-        ] {
-            let ours = plan(&b, length, v_in, v_out, 0.3);
-            let theirs = scurve7::plan(&BlockRequest {
-                length,
-                v_in,
-                v_out,
-                v_feed: 0.3,
-                limits: top,
-            });
-            assert!(
-                (ours.duration() - theirs.duration()).abs() <= 1e-9 * theirs.duration(),
-                "L {length}"
-            );
-            assert!((ours.length() - length).abs() <= 1e-12 * length);
-            assert!((ours.v_end() - theirs.v_end()).abs() <= 1e-9);
-        }
-        let (l, v) = (0.004, 0.03);
-        assert!((max_speed(&b, l, v) - scurve7::max_entry(l, v, &top)).abs() <= 1e-12);
-    }
-
-    fn falling_bands() -> (Limits, Bands) {
-        let top = limits(0.25, 0.4, 20.0);
-        let bands = Bands::below(
-            &top,
-            &[
-                band(0.08, 2.0, 60.0),
-                band(0.15, 1.5, 45.0),
-                band(0.2, 0.9, 30.0),
-                band(0.23, 0.6, 400.0),
-            ],
-        );
-        (top, bands)
-    }
-
-    /// Bands whose acceleration rises and falls with speed (a middle band allows more).
-    fn mixed_bands() -> (Limits, Bands) {
-        let top = limits(0.25, 0.5, 30.0);
-        let bands = Bands::below(
-            &top,
-            &[
-                band(0.05, 0.8, 80.0),
-                band(0.12, 1.9, 40.0),
-                band(0.18, 0.7, 300.0),
-                band(0.22, 1.1, 20.0),
-            ],
-        );
-        (top, bands)
-    }
-
-    /// The band of speed v: its acceleration and jerk.
-    fn band_limits(b: &Banded, v: f64) -> (f64, f64) {
-        for k in 0..b.count() {
-            let l = b.limits(k);
-            if v <= b.top_of(k) {
-                return (l.a_max, l.j_max);
-            }
-        }
-        unreachable!()
-    }
-
-    /// Blocks across falling bands, sampled finely: speed, acceleration and jerk within the band
-    /// of the speed at every instant, continuous acceleration, the length and the exit as asked,
-    /// and never slower than ramping band by band with the acceleration zero at each edge.
-    #[test]
-    fn blocks_keep_each_bands_limits() {
-        for (top, bands) in [falling_bands(), mixed_bands()] {
-            blocks_within(&top, &bands);
-        }
-    }
-
-    fn blocks_within(top: &Limits, bands: &Bands) {
-        let b = Banded {
-            kind: ProfileKind::Scurve7,
-            top,
-            bands,
-        };
-        let by_parts = Banded {
-            kind: ProfileKind::Quintic,
-            ..b
-        };
-        for &length in &[1e-4, 1e-3, 0.01, 0.05, 0.3] {
-            for &v_out in &[0.0, 0.1, 0.21, 0.24] {
-                let v_in = max_speed(&b, length, v_out).min(0.25);
-                let p = plan(&b, length, v_in, v_out, 0.25);
-                assert!(
-                    (p.length() - length).abs() <= 1e-12 * length.max(1e-3),
-                    "L {length}: {}",
-                    p.length()
-                );
-                assert!(
-                    (p.v_end() - v_out).abs() <= 1e-9,
-                    "ends at {} not {v_out}",
-                    p.v_end()
-                );
-                let n = 4000;
-                let mut last_a = 0.0;
-                for i in 0..=n {
-                    let k = p.at(p.duration() * i as f64 / n as f64);
-                    let (a_max, j_max) = band_limits(&b, k.v);
-                    assert!(k.v <= 0.25 * (1.0 + 1e-12) && k.v >= -1e-12);
-                    assert!(
-                        k.a.abs() <= a_max * (1.0 + 1e-9) + 1e-12,
-                        "a {} > {a_max} at v {}",
-                        k.a,
-                        k.v
-                    );
-                    assert!(
-                        k.j.abs() <= j_max * (1.0 + 1e-9),
-                        "j {} > {j_max} at v {}",
-                        k.j,
-                        k.v
-                    );
-                    assert!(
-                        (k.a - last_a).abs() <= 400.0 * p.duration() / n as f64 * 1.01 + 1e-12,
-                        "a jumps {last_a} → {} at v {} (L {length}, v_in {v_in}, v_out {v_out}): {:?}",
-                        k.a,
-                        k.v,
-                        p.phases
-                    );
-                    last_a = k.a;
-                }
-                // Rest to rest against the band-by-band parts of the same bands with scurve7's ramps.
-                let ours = plan(&b, length, 0.0, 0.0, 0.25).duration();
-                let parts: f64 = Banded {
-                    kind: ProfileKind::Scurve7,
-                    ..by_parts
-                }
-                .parts(length, 0.0, 0.0, 0.25)
-                .iter()
-                .map(|p| p.profile.duration())
-                .sum();
-                assert!(
-                    ours <= parts * (1.0 + 1e-9),
-                    "L {length}: {ours} vs parts {parts}"
-                );
-            }
-        }
-    }
-
-    /// A drop is the rise reversed: the same distance both ways, and the largest entry, the
-    /// largest exit and the lowest exit agree with the distance they invert.
-    #[test]
-    fn planning_questions_invert_the_distance() {
-        let (top, bands) = falling_bands();
-        let b = Banded {
-            kind: ProfileKind::Scurve7,
-            top: &top,
-            bands: &bands,
-        };
-        for &(length, v) in &[(1e-3, 0.0), (0.01, 0.05), (0.02, 0.19), (0.2, 0.0)] {
-            let w = max_speed(&b, length, v);
-            assert!(ramp_distance(&b, v, w) <= length);
-            assert!(ramp_distance(&b, v, w * (1.0 + 1e-9) + 1e-15) > length);
-            assert_eq!(ramp_distance(&b, v, w), ramp_distance(&b, w, v));
-        }
-        for &(v_in, length, target) in &[(0.24, 0.03, 0.2), (0.24, 0.002, 0.1), (0.24, 0.0005, 0.2)] {
-            let x = lowest_exit(&b, length, v_in, target);
-            assert!(x <= target);
-            if ramp_distance(&b, v_in, target) <= length {
-                assert_eq!(x, target);
-            } else if ramp_distance(&b, v_in, 0.0) <= length {
-                assert!(ramp_distance(&b, v_in, x) <= length);
-                assert!(
-                    x == target || ramp_distance(&b, v_in, x + 1e-9) > length,
-                    "{x} is not the largest"
-                );
-            } else {
-                assert_eq!(x, 0.0);
-            }
-        }
-    }
-}
+mod tests;

@@ -6,6 +6,10 @@
 pub const NEWTON_STEPS: usize = 64;
 /// Bisection steps: the bracket reaches adjacent floats long before.
 pub const BISECTIONS: usize = 110;
+/// Relative width (of the larger end) at which a regula falsi's bracket ends: far above the
+/// rounding of the distances it inverts (a few ulps; below it the steps only chase that noise),
+/// far below anything a tick shows (1e-12 of a speed is 1e-15 m over a 1 ms tick at 1 m/s).
+pub const ROOT_TOL: f64 = 1e-12;
 /// Steps of `fit_down` (ulps, doubling): covers any start within a factor 2 of the target.
 pub const FIT_DOWN_STEPS: usize = 64;
 /// Doublings of the bracket in the generic `largest_within` search.

@@ -31,14 +31,15 @@ pub fn length(letter: u8, value: f64, unit: f64) -> Result<f64, String> {
     }
 }
 
-/// A feed F (program units per minute) in m/s: any positive finite F (the caller caps it at
-/// the machine's largest feed); the range only keeps the number finite.
+/// A feed F (program units per minute) in m/s: zero or any positive finite F (the caller caps
+/// it at the machine's largest feed); the range only keeps the number finite. F0 is a setting
+/// LinuxCNC takes (its planner tests write `F0` before `G95`); a feed move at F0 is refused.
 pub fn feed(value: f64, unit: f64) -> Result<f64, String> {
     let v = value * unit / 60.0;
-    if v > 0.0 && v.is_finite() {
+    if v >= 0.0 && v.is_finite() {
         Ok(v)
-    } else if value <= 0.0 {
-        Err(format!("feed F{value} must be positive"))
+    } else if value < 0.0 {
+        Err(format!("feed F{value} must not be negative"))
     } else {
         Err(format!("feed F{value} out of range (not a finite number)"))
     }
@@ -111,7 +112,7 @@ mod tests {
         assert!(e.contains("out of range") && e.contains(" in)"), "{e}");
         assert!(feed(1e6, 1e-3).is_ok() && feed(f64::MAX, 25.4e-3).is_ok());
         assert!(feed(f64::INFINITY, 1e-3).unwrap_err().contains("out of range"));
-        assert!(feed(-1.0, 1e-3).unwrap_err().contains("positive"));
+        assert!(feed(-1.0, 1e-3).unwrap_err().contains("negative") && feed(0.0, 1e-3) == Ok(0.0));
         assert_eq!(turns("G2", 1.0), Ok(0));
         assert_eq!(turns("G2", 10_000.0), Ok(9_999));
         assert!(turns("G2", 10_001.0).unwrap_err().contains("1 to 10000"));

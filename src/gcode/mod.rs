@@ -100,8 +100,16 @@ impl Block {
         match self.motion {
             Motion::Rapid { to } | Motion::Linear { to } => point("block end", to, MAX_POSITION_M)?,
             Motion::Arc {
-                to, center, turns, ..
+                to,
+                center,
+                turns,
+                plane,
+                ..
             } => {
+                if let Plane::Turned { cos, sin, .. } = plane {
+                    // A rotation: (cos, sin) on the unit circle.
+                    within("arc plane turn", cos.hypot(sin), 1.0 - 1e-12, 1.0 + 1e-12)?;
+                }
                 point("arc end", to, MAX_POSITION_M)?;
                 point("arc centre", center, MAX_POSITION_M)?;
                 at_most("arc turns", u64::from(turns), check::MAX_TURNS as u64)?;

@@ -26,6 +26,9 @@ pub enum Keyword {
     /// A bare `O1234` (a comment may follow): a program number (LinuxCNC "Fanuc-Style
     /// Numbered Programs").
     Number,
+    /// A word that is no keyword: an error where the line runs, skipped otherwise (LinuxCNC's
+    /// O_none).
+    Unknown,
 }
 
 const KEYWORDS: [(&str, Keyword); 15] = [
@@ -64,6 +67,10 @@ pub struct Head {
     pub keyword: Keyword,
     pub col: u32,
     pub rest: usize,
+    /// Letters after the keyword (0-based column, message): an error on a line that is run;
+    /// a line being skipped is taken for its keyword, as LinuxCNC checks the rest of a line
+    /// only when it is not skipping.
+    pub trailing: Option<(usize, String)>,
 }
 
 impl Head {
@@ -108,6 +115,16 @@ pub fn head(line: &str, params: Option<&Params>) -> Option<Located<Head>> {
     Some(parse_head(b, i, params))
 }
 
+/// `head` of a line that is run: letters after the keyword are an error.
+pub fn head_run(line: &str, params: &Params) -> Option<Located<Head>> {
+    head(line, Some(params)).map(|h| {
+        h.and_then(|h| match h.trailing {
+            Some(t) => Err(t),
+            None => Ok(h),
+        })
+    })
+}
+
 fn parse_head(b: &[u8], o: usize, params: Option<&Params>) -> Located<Head> {
     let mut i = blank(b, o + 1);
     let label = if b.get(i) == Some(&b'[') {
@@ -144,25 +161,72 @@ fn parse_head(b: &[u8], o: usize, params: Option<&Params>) -> Located<Head> {
     let len = b[i..].iter().take_while(|c| c.is_ascii_alphabetic()).count();
     let word = &b[start..start + len];
     let bare = len == 0 && matches!(b.get(start), None | Some(b'(' | b';'));
-    let found = KEYWORDS
+    if bare {
+        return Ok(Head {
+            label,
+            keyword: Keyword::Number,
+            col: o as u32 + 1,
+            rest: start,
+            trailing: None,
+        });
+    }
+    // LinuxCNC's read_o takes the first keyword the word starts with, in this order, and
+    // refuses letters after it ("Unexpected character after O-word"): `callsub` is `call`
+    // followed by `sub`, an error.
+    let Some(&(name, keyword)) = MATCH_ORDER
         .iter()
-        .find(|(k, _)| word.eq_ignore_ascii_case(k.as_bytes()));
-    let Some(&(_, keyword)) = found.or(bare.then_some(&("", Keyword::Number))) else {
+        .find(|(k, _)| word.len() >= k.len() && word[..k.len()].eq_ignore_ascii_case(k.as_bytes()))
+    else {
         let msg = format!(
             "{}: unknown O-word keyword '{}' (sub, endsub, call, return, if, elseif, else, endif, \
              while, endwhile, do, repeat, endrepeat, break, continue)",
             shown(&label),
             String::from_utf8_lossy(word)
         );
-        return Err((start, msg));
+        return Ok(Head {
+            label,
+            keyword: Keyword::Unknown,
+            col: o as u32 + 1,
+            rest: start + len,
+            trailing: Some((start, msg)),
+        });
     };
+    let trailing = (word.len() > name.len()).then(|| {
+        let msg = format!(
+            "{}: unexpected '{}' after '{name}' (LinuxCNC reads the keyword {name} and refuses the \
+             rest: \"Unexpected character after O-word\")",
+            shown(&label),
+            String::from_utf8_lossy(&word[name.len()..])
+        );
+        (start + name.len(), msg)
+    });
     Ok(Head {
         label,
         keyword,
         col: o as u32 + 1,
         rest: start + len,
+        trailing,
     })
 }
+
+/// The keywords in the order LinuxCNC's `read_o` tries them as prefixes of the word.
+const MATCH_ORDER: [(&str, Keyword); 15] = [
+    ("sub", Keyword::Sub),
+    ("endsub", Keyword::EndSub),
+    ("call", Keyword::Call),
+    ("do", Keyword::Do),
+    ("while", Keyword::While),
+    ("repeat", Keyword::Repeat),
+    ("if", Keyword::If),
+    ("elseif", Keyword::ElseIf),
+    ("else", Keyword::Else),
+    ("endif", Keyword::EndIf),
+    ("break", Keyword::Break),
+    ("continue", Keyword::Continue),
+    ("endwhile", Keyword::EndWhile),
+    ("endrepeat", Keyword::EndRepeat),
+    ("return", Keyword::Return),
+];
 
 /// `o[expression]`: the label it computes (a whole number), or `[…]` when not evaluated.
 fn indirect(b: &[u8], i: &mut usize, params: Option<&Params>) -> Located<String> {
@@ -241,7 +305,20 @@ mod tests {
             vec![1.0, 5.0]
         );
         assert!(head("G1 X1", None).is_none());
-        assert_eq!(head("o100 jump", None).unwrap().unwrap_err().0, 5);
+        let p = Params::default();
+        assert_eq!(head_run("o100 jump", &p).unwrap().unwrap_err().0, 5);
+        assert_eq!(
+            head("o100 jump", None).unwrap().unwrap().keyword,
+            Keyword::Unknown
+        );
+        // LinuxCNC's prefix match: `callsub` is `call`, then 'sub' is refused where it is run.
+        let h = head("o<g20sub> callsub", None).unwrap().unwrap();
+        assert_eq!(
+            (h.keyword, h.trailing.as_ref().map(|t| t.0)),
+            (Keyword::Call, Some(14))
+        );
+        let p = Params::default();
+        assert_eq!(head_run("o<g20sub> callsub", &p).unwrap().unwrap_err().0, 14);
         let h = head("o1 if [1] X", None).unwrap().unwrap();
         assert_eq!(args("o1 if [1] X", &h, &p).unwrap_err().0, 10);
     }

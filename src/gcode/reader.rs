@@ -6,6 +6,7 @@ mod comp;
 mod comp_geom;
 mod cycles;
 mod execute;
+mod files;
 mod flow;
 pub mod frame;
 mod inverse;
@@ -17,7 +18,7 @@ mod state;
 mod words;
 
 use super::params::Params;
-use super::source::{LineError, Lines, ProgramSource, MAX_LINE_BYTES};
+use super::source::{Lines, ProgramSource};
 use super::words::{split_with, Sets, Word};
 use super::{Block, Motion, PathMode, StopKind};
 use crate::config::{CutterCorner, NcSetup, DEFAULT_ARC_TOLERANCE_M};
@@ -58,6 +59,10 @@ pub struct Reader {
     /// Chord tolerance (m) of the machine: splines are approximated within a share of it.
     chord_tolerance: f64,
     file: String,
+    /// Subroutine files called (sources 1, 2, …; source 0 is the program).
+    subfiles: Vec<files::SubFile>,
+    /// Source of the next line to read.
+    src: u32,
     /// Byte offset of the next line to read.
     offset: usize,
     /// Number of the next line to read (1-based).
@@ -121,6 +126,8 @@ struct LineCodes {
     cancel: Option<u32>,
     stop: Option<(StopKind, u32)>,
     tool_change: bool,
+    /// M61 on the line (its column).
+    set_tool: Option<u32>,
     comp: Option<(i64, u32)>,
     tlo: Option<(i64, u32)>,
     /// The group-0 code (G4, G10, G28, G30, G53, G92…, G5.3), in tenths.
@@ -136,6 +143,8 @@ impl Reader {
             max_feed: super::check::MAX_FEED_M_S,
             chord_tolerance: spline::default_chord_tolerance(),
             file: file.to_string(),
+            subfiles: Vec::new(),
+            src: 0,
             offset: 0,
             line: 1,
             position: start,
@@ -201,9 +210,13 @@ impl Reader {
         &self.file
     }
 
-    /// Byte offset of the next line to read: progress through the program.
+    /// Byte offset of the next line of the program to read: progress through the program
+    /// (while a subroutine file runs, the offset of its call).
     pub fn offset(&self) -> usize {
-        self.offset
+        match self.src {
+            0 => self.offset,
+            _ => self.flow.program_offset().unwrap_or(self.offset),
+        }
     }
 
     /// Number of the next line to read (1-based): progress through the program.
@@ -211,8 +224,9 @@ impl Reader {
         self.line
     }
 
+    /// An error at `line`:`col` of the source being read.
     fn error(&self, line: u32, col: u32, message: impl Into<String>) -> ProgramError {
-        ProgramError::new(&self.file, line, col, message)
+        self.error_in(self.src, line, col, message)
     }
 
     /// Next block, `Ok(None)` at the end of the program (or after M2/M30).
@@ -235,7 +249,7 @@ impl Reader {
             self.line_buf = buf;
             // Advance only past a line that was read without error, so a retry reports it again.
             result.inspect_err(|_| {
-                self.lines.reset();
+                self.close(self.src);
                 self.pending.clear();
             })?;
             if end == 0 {
@@ -244,7 +258,12 @@ impl Reader {
                 continue;
             }
             match self.jump.take() {
-                Some(p) => (self.offset, self.line) = (p.offset, p.line),
+                Some(p) => {
+                    if p.src != self.src {
+                        self.close(self.src);
+                    }
+                    (self.src, self.offset, self.line) = (p.src, p.offset, p.line);
+                }
                 None => {
                     self.offset += end;
                     self.line += 1;
@@ -253,8 +272,13 @@ impl Reader {
         }
     }
 
-    /// At the end of the text: nothing may be left open.
+    /// At the end of the text: nothing may be left open. A subroutine file ends inside its
+    /// sub only if its endsub was never reached (an `if` around it).
     fn end_of_text(&self) -> Result<(), ProgramError> {
+        if self.src != 0 {
+            let msg = "the end of the subroutine file inside its sub: its endsub was not reached";
+            return Err(self.error(self.line, 1, msg));
+        }
         if let Percent::Open(line) = self.percent {
             let msg =
                 "the program opens with '%' but has no closing '%' line (LinuxCNC \"File Requirements\")";
@@ -276,7 +300,13 @@ impl Reader {
     fn percent_line(&mut self, line: u32, raw: &str) -> Result<bool, ProgramError> {
         let text = raw.trim();
         let is_percent = text == "%";
-        match self.percent {
+        // Only the program is demarcated; in a subroutine file `%` is no word.
+        let state = if self.src == 0 {
+            self.percent
+        } else {
+            Percent::None
+        };
+        match state {
             Percent::Unknown if text.is_empty() => return Ok(true),
             Percent::Unknown if is_percent => {
                 self.percent = Percent::Open(line);
@@ -305,14 +335,12 @@ impl Reader {
     /// Read the next line into `buf` (left empty at the end) and execute it.
     fn read_and_execute(&mut self, buf: &mut Vec<u8>) -> Result<(), ProgramError> {
         let line = self.line;
-        self.lines.read_line(self.offset, buf).map_err(|e| match e {
-            LineError::Io(e) => self.error(line, 1, format!("cannot read the program: {e}")),
-            LineError::TooLong => self.error(
-                line,
-                1,
-                format!("line out of range (longer than {MAX_LINE_BYTES} bytes)"),
-            ),
-        })?;
+        let at = flow::Place {
+            src: self.src,
+            offset: self.offset,
+            line,
+        };
+        self.read_at(at, buf)?;
         if buf.is_empty() {
             return Ok(());
         }
@@ -337,13 +365,11 @@ impl Reader {
             deleted = raw.replacen('/', " ", 1);
             raw = &deleted;
         }
-        if let Some(head) = super::oword::head(raw, Some(&self.params)) {
+        if let Some(head) = super::oword::head_run(raw, &self.params) {
             let head = head.map_err(|(c, m)| self.error(line, c as u32 + 1, m))?;
-            let here = flow::Place {
-                offset: self.offset,
-                line,
-            };
+            let here = at;
             let next = flow::Place {
+                src: self.src,
                 offset: self.offset + buf.len(),
                 line: line.saturating_add(1),
             };

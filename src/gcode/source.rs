@@ -12,19 +12,29 @@ use std::sync::Arc;
 /// here instead of filling the memory.
 pub const MAX_LINE_BYTES: usize = 64 * 1024;
 
-/// A G-code program: text in memory or a file streamed line by line.
+/// A G-code program: text in memory, a file streamed line by line, or a file read whole (the
+/// FMU's `programFile`: its text, and its path for the subroutine files beside it).
 #[derive(Clone, Debug)]
 pub enum ProgramSource {
     Text(Arc<str>),
     File(PathBuf),
+    FileText(Arc<str>, PathBuf),
 }
 
 impl ProgramSource {
     /// The text, for a program held in memory.
     pub fn text(&self) -> Option<&str> {
         match self {
-            ProgramSource::Text(t) => Some(t),
+            ProgramSource::Text(t) | ProgramSource::FileText(t, _) => Some(t),
             ProgramSource::File(_) => None,
+        }
+    }
+
+    /// The program file's path (None for a text given as such).
+    pub fn path(&self) -> Option<&std::path::Path> {
+        match self {
+            ProgramSource::Text(_) => None,
+            ProgramSource::File(p) | ProgramSource::FileText(_, p) => Some(p),
         }
     }
 }
@@ -93,7 +103,7 @@ impl Lines {
     pub fn read_line(&mut self, offset: usize, buf: &mut Vec<u8>) -> Result<(), LineError> {
         buf.clear();
         match &self.source {
-            ProgramSource::Text(text) => {
+            ProgramSource::Text(text) | ProgramSource::FileText(text, _) => {
                 let rest = text.as_bytes().get(offset..).unwrap_or_default();
                 let end = rest
                     .iter()

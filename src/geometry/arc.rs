@@ -1,7 +1,7 @@
 //! Circular arcs and helices (G2/G3, circular corner blends): exact evaluation w.r.t. arc length
 //! and bounds of the derivatives per axis (the path stage projects the axis limits through them).
 
-use super::{add, basis, cross, scale, Geo, Plane, Vec3};
+use super::{add, basis, cross, dot, scale, Geo, Plane, Vec3};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -38,10 +38,43 @@ impl Arc {
         clockwise: bool,
         turns: u32,
     ) -> Option<Arc> {
+        if !plane.principal() {
+            return Arc::turned(from, to, center, plane, clockwise, turns);
+        }
         let (a, b, n) = plane.axes();
         let p0 = [from[a], from[b]];
         let p1 = [to[a], to[b]];
-        let mut c = [center[a], center[b]];
+        let c = [center[a], center[b]];
+        let (ea, eb, en) = (basis(a), basis(b), basis(n));
+        let (mut arc, c) = Arc::in_plane([p0, p1, c], [ea, eb, en], clockwise, turns)?;
+        arc.center = from;
+        (arc.center[a], arc.center[b]) = (c[0], c[1]);
+        arc.finish(from, to, to[n] - from[n])
+    }
+
+    /// `from_gcode` in a plane that is not one of the machine's (G18/G19 of a rotated system):
+    /// in-plane coordinates relative to `from` along the plane's turned axes.
+    fn turned(from: Vec3, to: Vec3, center: Vec3, plane: Plane, clockwise: bool, turns: u32) -> Option<Arc> {
+        let (ea, eb, en) = plane.basis();
+        let rel = |p: Vec3| {
+            let d = [p[0] - from[0], p[1] - from[1], p[2] - from[2]];
+            [dot(d, ea), dot(d, eb)]
+        };
+        let (mut arc, c) = Arc::in_plane([[0.0; 2], rel(to), rel(center)], [ea, eb, en], clockwise, turns)?;
+        arc.center = add(from, add(scale(ea, c[0]), scale(eb, c[1])));
+        let rise = dot([to[0] - from[0], to[1] - from[1], to[2] - from[2]], en);
+        arc.finish(from, to, rise)
+    }
+
+    /// The arc from in-plane start `p0` to end `p1` about (nearly) `c` in the plane of unit
+    /// axes `[ea, eb, en]`, and its in-plane centre; its centre, start, end and rise are set by
+    /// the caller.
+    fn in_plane(
+        [p0, p1, mut c]: [[f64; 2]; 3],
+        [ea, eb, en]: [Vec3; 3],
+        clockwise: bool,
+        turns: u32,
+    ) -> Option<(Arc, [f64; 2])> {
         let chord = [p1[0] - p0[0], p1[1] - p0[1]];
         let chord_len = chord[0].hypot(chord[1]);
         if chord_len > 0.0 {
@@ -65,24 +98,27 @@ impl Arc {
             sweep = TAU;
         }
         sweep += TAU * turns as f64;
-        let (ea, eb, en) = (basis(a), basis(b), basis(n));
         let e1 = add(scale(ea, r0[0] / radius), scale(eb, r0[1] / radius));
         let ccw_dir = cross(en, e1);
         let e2 = if clockwise { scale(ccw_dir, -1.0) } else { ccw_dir };
-        let mut center3 = from;
-        center3[a] = c[0];
-        center3[b] = c[1];
-        Some(Arc {
-            center: center3,
+        let arc = Arc {
+            center: [0.0; 3],
             e1,
             e2,
             axis: en,
             radius,
             sweep,
-            rise: to[n] - from[n],
-            start: from,
-            end: to,
-        })
+            rise: 0.0,
+            start: [0.0; 3],
+            end: [0.0; 3],
+        };
+        Some((arc, c))
+    }
+
+    /// The programmed start and end (met exactly) and the rise along the normal.
+    fn finish(mut self, from: Vec3, to: Vec3, rise: f64) -> Option<Arc> {
+        (self.start, self.end, self.rise) = (from, to, rise);
+        Some(self)
     }
 
     /// ds/dφ = sqrt(R² + h²), h = rise per radian.

@@ -27,7 +27,7 @@ use super::tolerance::{JOINT_D1_EPS, JOINT_D2_EPS, MIN_LENGTH};
 use super::{line_limits, max_bounds, PathBlock, Segment};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
-use crate::feed::{scurve7_banded, FeedLaw, Limits, ProfileKind};
+use crate::feed::{scurve7_banded, Limits, ProfileKind};
 use crate::geometry::{dot, norm, sub, Line, Source};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -431,9 +431,8 @@ pub(super) fn joined_loss(
         top: &fast.0,
         bands: &fast.1,
     };
-    let block = scurve7_banded::plan(&banded, l_fast, v_slow, v_slow, v_fast);
-    let loss = chain_loss + (l_fast / v_slow - block.duration()).max(0.0);
-    let v_peak = block.v_peak();
+    let (duration, v_peak) = scurve7_banded::plan_time(&banded, l_fast, v_slow, v_slow, v_fast);
+    let loss = chain_loss + (l_fast / v_slow - duration).max(0.0);
     let from_rest = scurve7_banded::Rise::from(&banded, 0.0);
     let t = |v: f64| from_rest.time_distance(v).0;
     let apart = t(v_slow) + scurve7_banded::ramp_time(&banded, v_slow, v_peak) - t(v_peak);

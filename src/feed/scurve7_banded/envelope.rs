@@ -112,9 +112,16 @@ fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
 /// Forward envelope over `levels`: a² grows by 2·J per unit of speed up to each band's A (cut
 /// to it at the band's floor where the band below allowed more). Unclipped at the top.
 fn forward(levels: &[Level]) -> Pieces {
+    forward_indexed(levels).0
+}
+
+/// `forward`, with the index of each level's first piece (those of the levels below come first).
+fn forward_indexed(levels: &[Level]) -> (Pieces, [usize; MAX_BANDS + 1]) {
     let mut fwd = Pieces::new();
+    let mut starts = [0; MAX_BANDS + 1];
     let mut f: f64 = 0.0;
-    for l in levels {
+    for (l, start) in levels.iter().zip(starts.iter_mut()) {
+        *start = fwd.n;
         f = f.min(l.a);
         let reach = l.floor + (l.a * l.a - f * f) / (2.0 * l.j);
         let end = reach.min(l.top);
@@ -136,7 +143,7 @@ fn forward(levels: &[Level]) -> Pieces {
             f = (f * f + 2.0 * l.j * (l.top - l.floor)).sqrt();
         }
     }
-    fwd
+    (fwd, starts)
 }
 
 /// Backward envelope from `hi` down over `levels` (pieces by decreasing speed).
@@ -148,9 +155,16 @@ fn backward(levels: &[Level], hi: f64) -> Pieces {
 
 /// `backward` into `bwd` (emptied first).
 fn backward_into(levels: &[Level], hi: f64, bwd: &mut Pieces) {
+    backward_from(levels, hi, 0.0, bwd, false);
+}
+
+/// The backward envelope over `levels` from `hi`, where it has acceleration `g` (0 at the end of
+/// a rise), into `bwd` (emptied first). With `to_plateau`, down to the highest level k ≥ 1 where
+/// it comes onto that level's plateau: below k's floor it is then the same whatever `hi` (it
+/// leaves k at acceleration A_k); returns k (0 where it went down through every level).
+fn backward_from(levels: &[Level], hi: f64, mut g: f64, bwd: &mut Pieces, to_plateau: bool) -> usize {
     bwd.n = 0;
-    let mut g: f64 = 0.0;
-    for l in levels.iter().rev() {
+    for (k, l) in levels.iter().enumerate().rev() {
         let top = l.top.min(hi);
         let g0 = g.min(l.a);
         let reach = top - (l.a * l.a - g0 * g0) / (2.0 * l.j);
@@ -169,10 +183,14 @@ fn backward_into(levels: &[Level], hi: f64, bwd: &mut Pieces) {
                 beta: 0.0,
             });
             g = l.a;
+            if to_plateau && k > 0 {
+                return k;
+            }
         } else {
             g = (g0 * g0 + 2.0 * l.j * (top - l.floor)).sqrt();
         }
     }
+    0
 }
 
 /// min(F, B) up to `hi` over the common refinement of both: on each stretch both are a² linear
@@ -218,20 +236,29 @@ pub struct Rise<'a> {
     levels: [Level; MAX_BANDS + 1],
     n: usize,
     fwd: Pieces,
+    /// Index of each level's first piece of F.
+    starts: [usize; MAX_BANDS + 1],
     /// Room for each rise's backward envelope (not zeroed again for every rise).
     bwd: RefCell<Pieces>,
+    /// Time and distance of the rise below level k's floor, for the rises whose B comes onto
+    /// k's plateau (`backward_from`): the same pieces in the same order for all of them, so the
+    /// sums go on from there bit for bit. Summed when first needed.
+    below: RefCell<[Option<(f64, f64)>; MAX_BANDS + 1]>,
 }
 
 impl<'a> Rise<'a> {
     pub fn from(b: &'a Banded<'a>, lo: f64) -> Rise<'a> {
         let (levels, n) = levels(b, lo, f64::INFINITY);
+        let (fwd, starts) = forward_indexed(&levels[..n]);
         Rise {
             b,
             lo,
             levels,
             n,
-            fwd: forward(&levels[..n]),
+            fwd,
+            starts,
             bwd: RefCell::new(Pieces::new()),
+            below: RefCell::new([None; MAX_BANDS + 1]),
         }
     }
 
@@ -239,21 +266,58 @@ impl<'a> Rise<'a> {
         self.lo
     }
 
+    /// The band the rise starts in: its top speed (∞ for the block's top band) and limits.
+    pub fn first_band(&self) -> Option<(f64, f64, f64)> {
+        self.levels[..self.n].first().map(|l| (l.top, l.a, l.j))
+    }
+
     pub fn banded(&self) -> &'a Banded<'a> {
         self.b
     }
 
-    /// Time and distance of the rise lo → hi (0 for hi ≤ lo).
+    /// Time and distance of the rise lo → hi (0 for hi ≤ lo): B down to its highest plateau,
+    /// the merge above that level's floor, the sums below it kept (`below`).
     pub fn time_distance(&self, hi: f64) -> (f64, f64) {
         let mut sum = Sum::default();
         if hi > self.lo {
             let n = self.levels[..self.n].partition_point(|l| l.floor < hi);
             let mut bwd = self.bwd.borrow_mut();
-            backward_into(&self.levels[..n], hi, &mut bwd);
-            merge(self.fwd.as_slice(), bwd.as_slice(), hi, |p| sum.add(p));
+            let k = backward_from(&self.levels[..n], hi, 0.0, &mut bwd, true);
+            if k > 0 {
+                (sum.t, sum.s) = self.below(k);
+            }
+            let fwd = &self.fwd.as_slice()[self.starts[k]..];
+            merge(fwd, bwd.as_slice(), hi, |p| sum.add(p));
         }
         (sum.t, sum.s)
     }
+
+    /// The sums of the rise below level k's floor with B leaving k at A_k (`below`).
+    fn below(&self, k: usize) -> (f64, f64) {
+        if let Some(sums) = self.below.borrow()[k] {
+            return sums;
+        }
+        let (floor, mut bwd) = (self.levels[k].floor, Pieces::new());
+        backward_from(&self.levels[..k], floor, self.levels[k].a, &mut bwd, false);
+        let mut sum = Sum::default();
+        let fwd = &self.fwd.as_slice()[..self.starts[k]];
+        merge(fwd, bwd.as_slice(), floor, |p| sum.add(p));
+        self.below.borrow_mut()[k] = Some((sum.t, sum.s));
+        (sum.t, sum.s)
+    }
+}
+
+/// The band of the speeds just below `v` (floor < v ≤ top, the first band for 0), where a ramp
+/// that ends at v from below runs last: its floor, acceleration and jerk.
+pub fn band_below(b: &Banded, v: f64) -> (f64, f64, f64) {
+    let mut floor = 0.0;
+    for l in b.bands.levels() {
+        if v <= l.v_top {
+            return (floor, l.a_max, l.j_max);
+        }
+        floor = l.v_top;
+    }
+    (floor, b.top.a_max, b.top.j_max)
 }
 
 /// The speed rise lo → hi as constant-jerk pieces, in order, to `take` (F built for this rise only).

@@ -21,14 +21,15 @@ impl Reader {
         let (ijk, r, p) = (w.ijk, w.r, w.p);
         let name = if clockwise { "G2" } else { "G3" };
         let n = self.plane.axes().2;
-        if self.plane != Plane::XY && self.rotation().rem_euclid(360.0) != 0.0 {
-            // The rotated XZ / YZ plane is not one of the machine's planes.
-            let msg = format!(
-                "{name} in G18/G19 while the coordinate system is rotated (G10 L2 R{}): only G17 arcs rotate",
-                self.rotation()
-            );
-            return Err(self.error(line, col, msg));
-        }
+        // G18/G19 of a rotated system: the arc is found in program coordinates, its plane turned
+        // with the XY axes about Z (LinuxCNC's canon turns the end, the centre and the plane's
+        // axes alike), so it lies in a vertical plane that is not one of the machine's.
+        let turned = self.plane != Plane::XY && self.rotation().rem_euclid(360.0) != 0.0;
+        let (from, end) = if turned {
+            (self.to_program(self.position), self.to_program(to))
+        } else {
+            (self.position, to)
+        };
         // The centre word not in the plane (K in G17, J in G18, I in G19) is an error.
         if let Some((_, c)) = ijk[n] {
             let letter = [b'I', b'J', b'K'][n] as char;
@@ -43,19 +44,23 @@ impl Reader {
             if r.is_some() {
                 return Err(self.error(line, col, format!("{name}: give either I/J/K or R, not both")));
             }
-            self.center_by_offsets(at, to, &ijk)?
+            self.center_by_offsets(at, [from, end], &ijk, turned)?
         } else if let Some(r) = r {
-            self.center_by_radius(at, clockwise, to, r)?
+            self.center_by_radius(at, clockwise, [from, end], r)?
         } else {
-            let words = match self.plane {
-                Plane::XY => "I/J",
-                Plane::XZ => "I/K",
-                Plane::YZ => "J/K",
-            };
+            let words = ["J/K", "I/K", "I/J"][n];
             let msg = format!("{name} needs a centre ({words}) or a radius (R)");
             return Err(self.error(line, col, msg));
         };
-        let plane = self.plane;
+        let (center, plane) = if turned {
+            let mut c = center;
+            c[n] = from[n];
+            let (cos, sin) = super::frame::cos_sin(self.rotation());
+            let yz = self.plane == Plane::YZ;
+            (self.to_machine(c), Plane::Turned { yz, cos, sin })
+        } else {
+            (center, self.plane)
+        };
         let motion = Motion::Arc {
             to,
             center,
@@ -67,18 +72,27 @@ impl Reader {
     }
 
     /// The centre from I/J/K; an end point off the circle within the tolerance moves the centre
-    /// onto the chord's bisector.
+    /// onto the chord's bisector. `from`, `to` and the centre are machine points, or program
+    /// points where `program` (a turned plane).
     fn center_by_offsets(
         &self,
         (line, col, name): (u32, u32, &str),
-        to: Vec3,
+        [from, to]: [Vec3; 2],
         ijk: &[Option<(f64, u32)>; 3],
+        program: bool,
     ) -> Result<Vec3, ProgramError> {
         let (a, b, n) = self.plane.axes();
-        let from = self.position;
         let mut center = from;
         let words = ijk.map(|w| w.map_or(0.0, |(v, _)| v * self.unit));
-        if self.arc_absolute {
+        if program {
+            for &i in &[a, b] {
+                center[i] = if self.arc_absolute {
+                    words[i]
+                } else {
+                    from[i] + words[i]
+                };
+            }
+        } else if self.arc_absolute {
             // G90.1: I/J/K are a point of the current system (LinuxCNC "G90.1, G91.1").
             let mut p = self.to_program(from);
             for &i in &[a, b] {
@@ -134,11 +148,10 @@ impl Reader {
         &self,
         (line, _, name): (u32, u32, &str),
         clockwise: bool,
-        to: Vec3,
+        [from, to]: [Vec3; 2],
         (rv, rc): (f64, u32),
     ) -> Result<Vec3, ProgramError> {
         let (a, b, n) = self.plane.axes();
-        let from = self.position;
         let mut center = from;
         center[n] = 0.0;
         let (chord_a, chord_b) = (to[a] - from[a], to[b] - from[b]);

@@ -6,7 +6,7 @@
 //! goes to its programmed point. Inside corners: intersection of the offset elements; outside
 //! corners: a transition arc about the corner (G450) or the tangents extended (G451).
 
-use super::comp_geom::{intersect, Curve, Elem, JOIN};
+use super::comp_geom::{entry_arc_center, intersect, Curve, Elem, EntryArc, JOIN};
 use super::Reader;
 use crate::config::CutterCorner;
 use crate::error::ProgramError;
@@ -33,6 +33,9 @@ pub struct Comp {
     plane: Plane,
     entry: Option<Block>,
     held: Option<Block>,
+    /// In-plane centre of the tool path of the held element when it is an entry arc (LinuxCNC
+    /// `convert_arc_comp1`): not the programmed centre.
+    held_center: Option<P2>,
     deferred: Vec<Block>,
     out: VecDeque<Block>,
     tool: Vec3,
@@ -52,6 +55,12 @@ impl Comp {
         within("compensation radius", self.radius, 0.0, MAX_POSITION_M)?;
         within("compensation radius", self.held_radius, 0.0, MAX_POSITION_M)?;
         point("compensation tool point", self.tool, MAX_POSITION_M)?;
+        if let Some(c) = self.held_center {
+            if self.held.is_none() {
+                return Err("an entry arc's centre without its element".into());
+            }
+            point("entry arc centre", [c[0], c[1], 0.0], MAX_POSITION_M)?;
+        }
         at_most("deferred blocks", self.deferred.len() as u64, MAX_DEFERRED as u64)?;
         let (a, b, _) = self.plane.axes();
         if self.held.is_some_and(|h| Elem::of(&h, a, b).is_none()) {
@@ -141,6 +150,15 @@ impl Reader {
             let m = "the plane changed while cutter compensation is on (G40 first)";
             return Err(self.error(b.line, 1, m));
         }
+        if self.comp.side != 0.0 && self.comp.plane != Plane::XY && self.rotated() {
+            // The offsets are taken in the machine's plane; a turned G18/G19 plane is none.
+            let m = format!(
+                "cutter compensation in G18/G19 while the coordinate system is rotated (R{}): \
+                 the rotated plane is not one of the machine's",
+                self.rotation()
+            );
+            return Err(self.error(b.line, 1, m));
+        }
         let (side, r) = (self.comp.side, self.comp.radius);
         self.check_arc_radius(&b, &elem)?;
         if let Some(entry) = self.comp.entry.take() {
@@ -167,14 +185,22 @@ impl Reader {
                 self.corner(held, b, elem)?;
             }
         } else if side != 0.0 {
-            if matches!(b.motion, Motion::Arc { .. }) {
-                return Err(self.error(
-                    b.line,
-                    1,
-                    "the G41/G42 entry move must be a straight line (G0/G1)",
-                ));
-            }
             self.comp.tool = b.from;
+            if matches!(b.motion, Motion::Arc { .. }) {
+                return self.entry_arc(b, &elem);
+            }
+            let length = dist(elem.start(), elem.end());
+            if length <= r + JOIN {
+                // LinuxCNC "G41, G42": "The lead in move must be at least as long as the tool
+                // radius"; its interpreter refuses one not longer.
+                let m = format!(
+                    "the G41/G42 entry move is {} mm long, not longer than the tool radius {} mm \
+                     (LinuxCNC: \"Length of cutter compensation entry move is not greater than the tool radius\")",
+                    shown_mm(length),
+                    shown_mm(r)
+                );
+                return Err(self.error(b.line, 1, m));
+            }
             self.comp.entry = Some(b);
         } else {
             self.emit_plain(b);
@@ -182,11 +208,75 @@ impl Reader {
         Ok(())
     }
 
+    /// A G41/G42 entry move that is an arc (LinuxCNC "Cutter Compensation", "Programming Entry
+    /// Moves": any move at least the tool radius long; `convert_arc_comp1`): the tool runs from
+    /// where it is on an arc turning as programmed to the perpendicular offset of the
+    /// programmed end, arriving along the offset contour; the arc is then held as any element,
+    /// its end fixed by the corner that follows.
+    fn entry_arc(&mut self, b: Block, elem: &Elem) -> Result<(), ProgramError> {
+        let (side, r) = (self.comp.side, self.comp.radius);
+        let Elem::Arc { center, .. } = *elem else {
+            return Ok(());
+        };
+        let (s, p) = (self.plane_of(b.from), elem.end());
+        if dist(s, p) <= r + JOIN {
+            let m = format!(
+                "the G41/G42 entry arc ends {} mm from its start, not farther than the tool radius {} mm \
+                 (LinuxCNC: \"Radius of cutter compensation entry arc is not greater than the tool radius\")",
+                shown_mm(dist(s, p)),
+                shown_mm(r)
+            );
+            return Err(self.error(b.line, 1, m));
+        }
+        let a = elem.offset_point(p, side, r);
+        let c = entry_arc_center(s, a, center).map_err(|why| {
+            let m = match why {
+                EntryArc::Backwards => {
+                    "the G41/G42 entry arc starts behind the tangent at its offset end: the tool would loop \
+                     round and arrive against the contour's direction (gouge); lead in on a longer arc or a line"
+                }
+                EntryArc::Flat => {
+                    "the G41/G42 entry arc's tool path would be nearly straight (LinuxCNC: \"Tool radius not \
+                     less than arc radius with comp\"); lead in on a line"
+                }
+            };
+            self.error(b.line, 1, m)
+        })?;
+        self.comp.held = Some(b);
+        self.comp.held_center = Some(c);
+        (self.comp.held_side, self.comp.held_radius) = (side, r);
+        Ok(())
+    }
+
+    /// The held element's tool path where it is not the programmed one's offset: the entry
+    /// arc from the tool's position to the offset end `p1`.
+    fn held_path(&self, e1: &Elem, p1: P2) -> Option<Elem> {
+        let (c, Elem::Arc { cw, .. }) = (self.comp.held_center?, *e1) else {
+            return None;
+        };
+        Some(Elem::Arc {
+            start: self.plane_of(self.comp.tool),
+            end: p1,
+            center: c,
+            radius: dist(c, p1),
+            cw,
+        })
+    }
+
     /// A block without motion in the plane: held back while an element waits for its corner.
+    /// After G40 a move without motion in the plane is the exit move all the same: LinuxCNC's
+    /// `convert_cutter_compensation_off` ends the held element at the compensated point and
+    /// takes the programmed one for the current point, so the next move, even along Z alone,
+    /// brings the tool back to the programmed point.
     fn not_in_plane(&mut self, b: Block) -> Result<(), ProgramError> {
+        let exit = self.comp.side == 0.0 && matches!(b.motion, Motion::Rapid { .. } | Motion::Linear { .. });
         if matches!(b.motion, Motion::Stop(StopKind::End)) {
             self.finish_held()?;
             self.emit(b, None);
+        } else if let Some(held) = exit.then(|| self.comp.held.take()).flatten() {
+            self.end_held(held, None);
+            self.flush_deferred();
+            self.emit_plain(b);
         } else if self.comp.entry.is_some() || self.comp.held.is_some() {
             if self.comp.deferred.len() >= MAX_DEFERRED {
                 let m =
@@ -241,11 +331,21 @@ impl Reader {
                     Elem::Line { .. } => unreachable!(),
                 },
             };
+            // An entry arc's tool path is its own circle, and it runs as itself.
+            let path1 = self.held_path(&e1, p1);
+            let curve1 = match path1 {
+                Some(Elem::Arc { center, radius, .. }) => Curve::Circle(center, radius),
+                _ => curve(&e1, t1, p1),
+            };
             let mid = [(p1[0] + p2[0]) / 2.0, (p1[1] + p2[1]) / 2.0];
-            let x = intersect(&curve(&e1, t1, p1), &curve(&e2, t2, p2), mid);
+            let x = intersect(&curve1, &curve(&e2, t2, p2), mid);
             let start1 = self.plane_of(self.comp.tool);
             let end2 = e2.offset_point(e2.end(), side, r);
-            let reachable = x.filter(|x| e1.runs_forward(start1, *x) && e2.runs_forward(*x, end2));
+            let forward1 = |x: P2| match &path1 {
+                Some(p) => p.runs_forward(start1, x),
+                None => e1.runs_forward(start1, x),
+            };
+            let reachable = x.filter(|x| forward1(*x) && e2.runs_forward(*x, end2));
             let Some(x) = reachable else {
                 let m = format!(
                     "concave corner cannot be reached by the tool (radius {} mm): the offset elements do not meet (gouge)",
@@ -366,11 +466,15 @@ impl Reader {
         self.emit(b, None);
     }
 
-    /// Emit the held element ending at `end` (None: perpendicular offset of its end).
-    fn end_held(&mut self, held: Block, end: Option<P2>) {
+    /// Emit the held element ending at `end` (None: perpendicular offset of its end); an entry
+    /// arc about its tool path's centre.
+    fn end_held(&mut self, mut held: Block, end: Option<P2>) {
         let (a, b, _) = self.comp.plane.axes();
         let e = Elem::of(&held, a, b).expect("held blocks move in the plane");
         let end = end.unwrap_or_else(|| e.offset_point(e.end(), self.comp.held_side, self.comp.held_radius));
+        if let (Some(c), Motion::Arc { center, .. }) = (self.comp.held_center.take(), &mut held.motion) {
+            (center[a], center[b]) = (c[0], c[1]);
+        }
         self.emit(held, Some(end));
     }
 

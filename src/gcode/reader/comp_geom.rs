@@ -126,6 +126,38 @@ impl Elem {
     }
 }
 
+/// The tool path of a G41/G42 entry arc (LinuxCNC `convert_arc_comp1`): from the tool at `s`,
+/// the programmed arc turning as programmed, to `a`, the perpendicular offset of the programmed
+/// end, with its centre on the radial line from `a` towards the programmed centre `c` (so the
+/// tool arrives along the offset contour) and equidistant from `s` and `a`. Its centre, or why
+/// there is none: `Backwards` where `s` lies on the far side of the tangent at `a` (the centre
+/// would be beyond `a`: LinuxCNC runs that arc, a loop that arrives against the contour's
+/// direction), `Flat` where the radius would exceed 5000 chords (LinuxCNC's TOLERANCE_EQUAL
+/// bound on the cosine, its "tool radius not less than arc radius with comp").
+pub fn entry_arc_center(s: P2, a: P2, c: P2) -> Result<P2, EntryArc> {
+    let toward = sub(c, a);
+    let d = [toward[0] / norm(toward), toward[1] / norm(toward)];
+    let sa = sub(s, a);
+    let proj = dot(sa, d);
+    if proj <= 0.0 {
+        return Err(EntryArc::Backwards);
+    }
+    if proj < ENTRY_COS * norm(sa) {
+        return Err(EntryArc::Flat);
+    }
+    Ok(along(a, d, dot(sa, sa) / (2.0 * proj)))
+}
+
+/// Why a G41/G42 entry arc has no tool path (`entry_arc_center`).
+#[derive(Debug, PartialEq)]
+pub enum EntryArc {
+    Backwards,
+    Flat,
+}
+
+/// LinuxCNC's TOLERANCE_EQUAL, on the cosine between the entry arc's chord and its radius.
+const ENTRY_COS: f64 = 1e-4;
+
 /// The length tolerance of cutter compensation (m): 1 nm.
 pub const JOIN: f64 = 1e-9;
 /// Offset lines whose unit tangents cross by less than this (sin θ) are parallel: they have no
@@ -189,6 +221,18 @@ pub fn intersect(c1: &Curve, c2: &Curve, near: P2) -> Option<P2> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn entry_arc_centres() {
+        // LinuxCNC's comp311_2.ngc: G41, tool radius 0.125, G3 from (1, 4) to (2, 3) about
+        // (2, 4): the tool ends at (2, 3.125); the centre (2, y) with 1 + (4 − y)² = (y − 3.125)²,
+        // y = 7.234375 / 1.75 (rs274 prints ARC_FEED(2.0000, 3.1250, 2.0000, 4.1339, 1)).
+        let b = entry_arc_center([1.0, 4.0], [2.0, 3.125], [2.0, 4.0]).unwrap();
+        assert!(dist(b, [2.0, 7.234375 / 1.75]) < 1e-15, "{b:?}");
+        // A start near the end, behind the tangent at the tool's end point.
+        let e = entry_arc_center([1.0, 0.0], [0.8617, 0.1519], [0.0, 0.0]);
+        assert_eq!(e, Err(EntryArc::Backwards));
+    }
 
     #[test]
     fn offset_elements_run_forward_only_within_their_element() {

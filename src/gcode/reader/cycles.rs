@@ -88,7 +88,11 @@ impl Reader {
             return Err(self.error(line, col, msg));
         }
         if self.feed <= 0.0 {
-            return Err(self.error(line, col, format!("{name} with no feed rate: F was never set")));
+            return Err(self.error(
+                line,
+                col,
+                format!("{name} with a zero feed rate (F0, or F never set)"),
+            ));
         }
         if fresh {
             self.cycle.z0 = self.position[2];

@@ -228,7 +228,7 @@ impl Reader {
             return Err(self.error(line, col, msg));
         }
         if !self.inverse_time && self.feed <= 0.0 {
-            let msg = format!("{} with no feed rate: F was never set", mode.name());
+            let msg = format!("{} with a zero feed rate (F0, or F never set)", mode.name());
             return Err(self.error(line, col, msg));
         }
         Ok(())

@@ -6,11 +6,11 @@
 //! branch not taken is skipped by scanning forward for the matching O-word. Every jump back
 //! counts against the machine's `max_loop_iterations`; calls nest at most MAX_CALL_DEPTH deep.
 
+use super::files::Found;
 use super::Reader;
 use crate::error::ProgramError;
 use crate::gcode::oword::{self, Head, Keyword};
 use crate::gcode::params::Locals;
-use crate::gcode::source::LineError;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -22,11 +22,24 @@ pub const MAX_OPEN: usize = 1024;
 /// Most subroutines a program defines.
 pub const MAX_SUBS: usize = 10_000;
 
-/// A line of the program: its byte offset and number.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// A line of the program or of a subroutine file: the source (0 the program, k the k-th
+/// subroutine file, `files.rs`), its byte offset there and its number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Place {
+    pub src: u32,
     pub offset: usize,
     pub line: u32,
+}
+
+impl Default for Place {
+    /// The first line of the program.
+    fn default() -> Self {
+        Place {
+            src: 0,
+            offset: 0,
+            line: 1,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -103,6 +116,21 @@ impl Flow {
         Ok(())
     }
 
+    pub(super) fn sub_count(&self) -> usize {
+        self.subs.len()
+    }
+
+    /// Remember subroutine `label`, its body starting at `body`.
+    pub(super) fn add_sub(&mut self, label: &str, body: Place) {
+        self.subs.insert(label.to_string(), body);
+    }
+
+    /// Byte offset in the program of the outermost call into a subroutine file (progress
+    /// through the program while a file's sub runs).
+    pub(super) fn program_offset(&self) -> Option<usize> {
+        self.calls.iter().find(|f| f.back.src == 0).map(|f| f.back.offset)
+    }
+
     /// The constructs open in the current call level.
     fn level(&self) -> &[Open] {
         &self.open[self.calls.last().map_or(0, |f| f.open)..]
@@ -122,14 +150,6 @@ impl Flow {
             Kind::Repeat => "repeat",
         }
     }
-}
-
-/// An O-word line found by a scan: its place, the line after it, its head and text.
-struct Found {
-    here: Place,
-    next: Place,
-    head: Head,
-    text: String,
 }
 
 impl Reader {
@@ -205,6 +225,8 @@ impl Reader {
             }
             Keyword::Break | Keyword::Continue => self.leave_pass(line, next, &head),
             // A program number heads a program; later it would start an M98/M99 subprogram.
+            // Refused by `head_run` before it gets here.
+            Keyword::Unknown => Err(self.error(line, head.col, "unknown O-word keyword")),
             Keyword::Number if self.motion.is_none() => Ok(()),
             Keyword::Number => {
                 let l = head.shown();
@@ -332,62 +354,27 @@ impl Reader {
         Ok(())
     }
 
-    /// A subroutine not yet met: scan the whole program for its `sub` line.
-    fn find_sub(&mut self, line: u32, head: &Head) -> Result<Place, ProgramError> {
-        let start = Place { offset: 0, line: 1 };
-        let Some(found) = self.scan(start, &head.label, &[Keyword::Sub])? else {
-            let msg = format!("{} call: the program has no {} sub", head.shown(), head.shown());
+    /// `oN endsub [value]` / `oN return [value]`: back to the caller, `#<_value>` set (0 without
+    /// a value, as LinuxCNC's `read_o`). Whatever its label, it returns from the call running:
+    /// LinuxCNC's `convert_control_functions` leaves the current call level on any `return` or
+    /// `endsub` (its sample retval.ngc returns from `o1000` with `o1010 return` inside
+    /// `o1010 if`).
+    fn return_from(&mut self, line: u32, head: &Head, value: Option<f64>) -> Result<(), ProgramError> {
+        let Some(frame) = self.flow.calls.pop() else {
+            let kw = head.keyword.name();
+            let msg = format!(
+                "{} {kw} outside a call of {} (no {} call is running)",
+                head.shown(),
+                head.shown(),
+                head.shown()
+            );
             return Err(self.error(line, head.col, msg));
         };
-        if self.flow.subs.len() >= MAX_SUBS {
-            return Err(self.error(line, head.col, format!("more than {MAX_SUBS} subroutines")));
-        }
-        // A sub without its endsub would run into the lines after it.
-        self.find(
-            found.here.line,
-            found.next,
-            &found.head,
-            &[Keyword::EndSub],
-            "endsub",
-        )?;
-        self.flow.subs.insert(head.label.clone(), found.next);
-        Ok(found.next)
-    }
-
-    /// `oN endsub [value]` / `oN return [value]`: back to the caller, `#<_value>` set.
-    fn return_from(&mut self, line: u32, head: &Head, value: Option<f64>) -> Result<(), ProgramError> {
-        let kw = if head.keyword == Keyword::Return {
-            "return"
-        } else {
-            "endsub"
-        };
-        let frame = match self.flow.calls.last() {
-            Some(f) if f.label == head.label => self.flow.calls.pop(),
-            Some(f) => {
-                let msg = format!(
-                    "{} {kw} inside a call of {}",
-                    head.shown(),
-                    oword::shown(&f.label)
-                );
-                return Err(self.error(line, head.col, msg));
-            }
-            None => {
-                let msg = format!(
-                    "{} {kw} outside a call of {} (no {} call is running)",
-                    head.shown(),
-                    head.shown(),
-                    head.shown()
-                );
-                return Err(self.error(line, head.col, msg));
-            }
-        };
-        let Some(frame) = frame else { return Ok(()) };
         self.params.leave_call(frame.locals);
         self.flow.open.truncate(frame.open);
-        if let Some(v) = value {
-            self.params.set_named("_value", v);
-            self.params.set_named("_value_returned", 1.0);
-        }
+        self.params.set_named("_value", value.unwrap_or(0.0));
+        self.params
+            .set_named("_value_returned", if value.is_some() { 1.0 } else { 0.0 });
         self.jump = Some(frame.back);
         Ok(())
     }
@@ -539,7 +526,7 @@ impl Reader {
     }
 
     /// `scan`, with a located error naming the missing end when there is none.
-    fn find(
+    pub(super) fn find(
         &mut self,
         line: u32,
         from: Place,
@@ -552,52 +539,8 @@ impl Reader {
             None => {
                 let kw = head.keyword.name();
                 let msg = format!("{l} {kw} without {l} {end}", l = head.shown());
-                Err(self.error(line, head.col, msg))
+                Err(self.error_in(from.src, line, head.col, msg))
             }
-        }
-    }
-
-    /// Read forward from `from`, without executing, to the O-word line `label` with one of
-    /// `keys`; None at the end of the program.
-    fn scan(&mut self, from: Place, label: &str, keys: &[Keyword]) -> Result<Option<Found>, ProgramError> {
-        let mut at = from;
-        let mut buf = Vec::new();
-        loop {
-            self.lines.read_line(at.offset, &mut buf).map_err(|e| match e {
-                LineError::Io(e) => self.error(at.line, 1, format!("cannot read the program: {e}")),
-                LineError::TooLong => self.error(at.line, 1, "line out of range (longer than 64 KiB)"),
-            })?;
-            if buf.is_empty() {
-                return Ok(None);
-            }
-            let next = Place {
-                offset: at.offset + buf.len(),
-                line: at.line.saturating_add(1),
-            };
-            let text = String::from_utf8_lossy(&buf);
-            let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-            if text.trim() == "%" && Some(at.line) != self.opening_percent() {
-                // A closing `%` ends the program (LinuxCNC "File Requirements").
-                return Ok(None);
-            }
-            // Block delete: the line is skipped (switch on) or read without its '/'.
-            let slash = text.trim_start().strip_prefix('/');
-            let deleted = self.nc.block_delete && slash.is_some();
-            let shift = slash.map_or(0, |rest| text.len() - rest.len());
-            let text = slash.unwrap_or(text);
-            if let Some(h) = oword::head(text, None).filter(|_| !deleted) {
-                let h = h.map_err(|(c, m)| self.error(at.line, (shift + c) as u32 + 1, m))?;
-                if h.label == label && keys.contains(&h.keyword) {
-                    let text = text.to_string();
-                    return Ok(Some(Found {
-                        here: at,
-                        next,
-                        head: h,
-                        text,
-                    }));
-                }
-            }
-            at = next;
         }
     }
 

@@ -44,7 +44,7 @@ impl Reader {
         self.nc.work_rotation[self.work]
     }
 
-    fn rotated(&self) -> bool {
+    pub(super) fn rotated(&self) -> bool {
         self.rotation().rem_euclid(360.0) != 0.0
     }
 

@@ -64,6 +64,12 @@ impl Reader {
         let mut codes = LineCodes::default();
         // Modal groups seen on this line, to refuse two words of one group.
         let mut groups: [Option<u32>; 13] = [None; 13];
+        // LinuxCNC's read_g drops G80 when another motion code (group 1) is on the line, in
+        // either order (its planner tests start `G90 G17 G40 G80 G00 G20`), and a second G80.
+        let tenths = |w: &Word| (w.value * 10.0).round() as i64;
+        let motion_besides_g80 = words
+            .iter()
+            .any(|w| w.letter == b'G' && g_group(tenths(w)) == Some(0) && tenths(w) != 800);
         for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
             // Codes with one decimal (G90.1); compare in tenths.
             let code = (w.value * 10.0).round() as i64;
@@ -73,6 +79,9 @@ impl Reader {
             }
             if w.letter == b'M' {
                 self.m_code(line, code, w.col, &mut codes)?;
+                continue;
+            }
+            if code == 800 && w.letter == b'G' && (motion_besides_g80 || groups[0].is_some()) {
                 continue;
             }
             if let Some(g) = g_group(code) {
@@ -165,6 +174,10 @@ impl Reader {
             20 | 300 => Some(StopKind::End),
             60 => {
                 codes.tool_change = true;
+                None
+            }
+            610 => {
+                codes.set_tool = Some(col);
                 None
             }
             // Spindle, coolant, override switches: no motion.

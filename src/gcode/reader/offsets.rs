@@ -93,6 +93,14 @@ impl Reader {
         if codes.tool_change {
             self.tool.loaded = self.tool.selected;
         }
+        if let Some(col) = codes.set_tool {
+            // M61 Q (LinuxCNC "M61 Set Current Tool"): the tool in the spindle, no change and
+            // no new length offset (G43 after it does that).
+            let Some(q) = extra.q else {
+                return Err(self.error(line, col, "M61 needs Q (the tool number, 0 or greater)"));
+            };
+            self.tool.loaded = self.whole(line, 'Q', q, MAX_TOOL)?;
+        }
         if let (Some(d), false) = (extra.d, matches!(codes.comp, Some((411 | 421, _)))) {
             self.tool.d = Some(self.whole(line, 'D', d, MAX_TOOL)?);
         }

@@ -27,11 +27,14 @@ impl Reader {
     /// `text`: the program the state is restored for (None: a file, read as a stream).
     pub fn check_state(&self, text: Option<&str>, machine: &Machine) -> Result<(), String> {
         let starts = text.map(line_starts);
-        let place_ok = |p: Place| match &starts {
-            Some(s) => p.line >= 1 && s.get(p.line as usize - 1) == Some(&p.offset),
-            None => p.line >= 1,
+        // The program's places against its text; a subroutine file's (streamed) by number.
+        let files = self.subfile_count() as u64;
+        let place_ok = |p: Place| match (&starts, p.src) {
+            (Some(s), 0) => p.line >= 1 && s.get(p.line as usize - 1) == Some(&p.offset),
+            _ => p.line >= 1 && u64::from(p.src) <= files,
         };
         if !place_ok(Place {
+            src: self.src,
             offset: self.offset,
             line: self.line,
         }) {
@@ -40,6 +43,10 @@ impl Reader {
                 self.offset, self.line
             ));
         }
+        if self.nc.subroutine_path != machine.nc.subroutine_path {
+            return Err("reader: the machine's subroutine_path changed".into());
+        }
+        self.check_subfiles()?;
         if self.arc_tolerance != machine.arc_radius_tolerance
             || self.nc.max_loop_iterations != machine.nc.max_loop_iterations
             || self.max_feed != machine.max_feed
