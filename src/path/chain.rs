@@ -145,10 +145,16 @@ impl Chain {
         self.push_marked(piece, &[]);
     }
     /// Add a piece whose curve parameter u comes onto source line `line` at each (u, line) of
-    /// `marks` (increasing u; those outside the piece's range are dropped).
+    /// `marks` (increasing u; those outside the piece's range are dropped, the last before it
+    /// naming the line at its start).
     pub fn push_marked(&mut self, piece: Piece, marks: &[(f64, u32)]) {
         let start = self.length;
-        self.marks.push((start, piece.line));
+        let line = marks
+            .iter()
+            .take_while(|&&(u, _)| u <= piece.u0)
+            .last()
+            .map_or(piece.line, |m| m.1);
+        self.marks.push((start, line));
         for &(u, line) in marks {
             if u > piece.u0 && u < piece.u1 {
                 self.marks.push((start + (u - piece.u0), line));
@@ -182,6 +188,10 @@ impl Chain {
     }
     pub fn end(&self) -> Vec3 {
         self.pieces.last().expect("chains are never empty").end()
+    }
+    /// Every point reports the same program line.
+    pub fn one_source(&self) -> bool {
+        self.marks.iter().all(|m| m.1 == self.marks[0].1)
     }
     /// Program line of the geometry at s (see `marks`).
     pub fn line_at(&self, s: f64) -> u32 {

@@ -7,13 +7,12 @@
 
 use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
 use super::hermite::{Hermite, BOUND_PIECES};
-use super::smooth::{jet_at, joined_loss, Span};
-use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
+use super::smooth::{jet_at, joined_loss, Move, Span};
+use super::tolerance::{MIN_LENGTH, RAMP_FIT, RAMP_STEPS, REVERSAL_COS};
 use super::{constant_speed_limit, line_limits, slowest_axis};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
 use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
-use crate::geometry::Source;
 use crate::geometry::{dot, norm, sub, unit};
 
 /// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
@@ -69,72 +68,177 @@ pub(super) fn transition(
         return None;
     }
     let tol = held.last.tolerance;
-    // Eq. 52: the apex of the line-line transition lies (3/16)·L·|t_out − t_in| from the corner.
     let w = norm(sub(t_out, t_in));
-    let apex_cut = if w > 0.0 {
-        16.0 * tol / (3.0 * w)
-    } else {
-        f64::INFINITY
-    };
-    let mut d = apex_cut
-        .min(0.5 * held.last.source.length())
-        .min(0.5 * next.first.source.length())
-        .min(held.piece.length())
-        .min(next.piece.length());
-    // Two lines: eq. 52 puts the largest deviation, |OQ| = tol, at the apex (blend.rs tests).
+    // All that is left of the span before (the transition at its start has cut it already) and
+    // half of the span after (the other half for the corner at its end), over as many
+    // programmed moves as they stand for.
+    let reach = held.piece.length().min(0.5 * next.piece.length());
+    // Two lines: the largest deviation is at the apex, in closed form (`apex_share`).
     let lines = matches!(
-        (
-            held.piece.curve,
-            next.piece.curve,
-            held.last.source,
-            next.first.source
-        ),
-        (Curve::Line(_), Curve::Line(_), Source::Line(_), Source::Line(_))
+        (held.piece.curve, next.piece.curve),
+        (Curve::Line(_), Curve::Line(_))
     );
     let feed = held.last.feed.min(next.first.feed);
     let mut sides = [side(held, held.last.feed, m), side(next, next.first.feed, m)];
     joined_sides(&mut sides);
-    // The longest cut within the tolerance first, then halves of it while they cost less (a
-    // longer transition is faster through the corner but replaces more of a faster neighbour):
-    // so a larger tolerance, which admits every cut a smaller one did, does not keep a costlier
-    // one among those it compares.
-    let cost = |d: f64, h: &Hermite, v_max: f64| {
-        // Faster than the slower neighbour, it runs at that one's speed (in its chain, or with
-        // no room to ramp between): its time at the slowest of the three.
-        let v = v_max.min(sides[0].v).min(sides[1].v);
-        local_cost(d, h.length(), v, &sides)
+    let search = Search {
+        held,
+        next,
+        sides: &sides,
+        feed,
+        lines,
+        m,
     };
-    let mut best: Option<(f64, f64, Hermite)> = None;
-    for _ in 0..MAX_SHRINKS {
-        if d.is_nan() || d <= MIN_LENGTH {
+    let (mut best, mut longest): (Option<Found>, f64) = (None, f64::INFINITY);
+    for (k, &share) in LAMBDA_SHARES.iter().enumerate() {
+        // A transition at the feed or at its slower neighbour's speed keeps λ = 2d: a shorter
+        // one runs no faster there. The time falls with the share down to its best, then rises:
+        // a share that did not improve ends the search. Between curves, each try costs the
+        // sampled tolerance check: only tight corners try.
+        let limit = (feed / 1f64.max(best.as_ref().map_or(1.0, |b| b.h.speed_bound())))
+            .min(sides[0].v)
+            .min(sides[1].v);
+        let tries = if lines { AT_FEED } else { TIGHT };
+        if best
+            .as_ref()
+            .is_some_and(|b| b.v >= tries * limit || b.share != LAMBDA_SHARES[k - 1])
+        {
             break;
         }
-        let a = jet_at(&held.piece, held.piece.length() - d);
-        let b = jet_at(&next.piece, d);
-        // Parameter speed 1 at both ends: λ is the cut length on both sides.
-        let h = Hermite::new(a, b, 2.0 * d);
-        let within = || lines || within_tolerance(&h, &held.last.source, &next.first.source, tol);
-        match &best {
-            None => {
-                if within() {
-                    let Some(v_max) = faster_than_a_stop(&h, feed, m) else {
-                        break;
-                    };
-                    best = Some((cost(d, &h, v_max), d, h));
-                }
-                d *= SHRINK;
-            }
-            Some(b) => {
-                let c = cost(d, &h, own_speed(&h, feed, m));
-                if c >= b.0 - SAVING || !within() {
-                    break;
-                }
-                best = Some((c, d, h));
-                d *= COMPARE_SHRINK;
+        // The cut whose apex lies at the tolerance from the corner (eq. 52 at share 1).
+        let apex_cut = if w > 0.0 {
+            tol / (w * apex_share(share))
+        } else {
+            f64::INFINITY
+        };
+        // A shorter λ deviates more at the same cut: its longest admissible cut is no longer than
+        // the last share's, where the search starts (fewer tolerance checks).
+        let start = apex_cut.min(reach).min(longest);
+        if let Some((found, admitted)) = search.cuts(start, share, None) {
+            longest = admitted;
+            if best.as_ref().is_none_or(|b| found.cost < b.cost - SAVING) {
+                best = Some(found);
             }
         }
     }
-    best.map(|(_, d, h)| (d, d, h, own_limits(&h, feed, m)))
+    best.map(|b| (b.d, b.d, b.h, own_limits(&b.h, feed, m)))
+}
+
+/// A transition's speed at this share of the feed (or of its slower neighbour's speed) or above
+/// counts as at the feed; a corner between curves whose transition runs below `TIGHT` of it is
+/// tight (where a shorter λ gains: on the CAM-like program 94 % of the time it saves, for a
+/// fifth of the search's CPU).
+const AT_FEED: f64 = 0.95;
+const TIGHT: f64 = 0.25;
+
+/// A cut found: its time at the corner, the cut, the curve and its top speed.
+struct Found {
+    cost: f64,
+    d: f64,
+    h: Hermite,
+    v: f64,
+    share: f64,
+    /// Halvings of the longest admitted cut.
+    halvings: u32,
+}
+
+/// Shares of 2d tried as the transition's parameter length λ (cut d on both sides, |p'| = 1 at
+/// both ends). Seed 004 takes λ = 2d (eq. 51); a shorter λ makes the curvature more even along
+/// the transition (between two lines meeting at 53°, its peak is 1.71 times the mean turning
+/// rate at share 1, 1.22 at 0.8), which the speed limit of a tight corner gains by, while |p'|
+/// rises in the middle (1.31 at share 0.8), which a corner run at the feed loses by. The time
+/// at the corner picks among them.
+const LAMBDA_SHARES: [f64; 3] = [1.0, 0.85, 0.7];
+
+/// The apex of the transition between two lines with cut d and λ = 2·share·d lies
+/// |t_out − t_in|·d·apex_share(share) from the corner: p(λ/2) = corner + (t_out − t_in)·(d/2 −
+/// 5λ/32) (3/16 at share 1, eq. 52). For shares in [0.5, 1] the curve is convex and symmetric,
+/// so its distance from either line grows towards the apex: the largest deviation is there.
+pub(super) fn apex_share(share: f64) -> f64 {
+    0.5 - 5.0 * share / 16.0
+}
+
+/// What a junction's cut search needs: the two sides, the tolerance and the feed.
+struct Search<'a> {
+    held: &'a Span,
+    next: &'a Span,
+    sides: &'a [Side; 2],
+    feed: f64,
+    lines: bool,
+    m: &'a Machine,
+}
+
+impl Search<'_> {
+    /// The cut for λ = 2·share·d, from `d`: the longest within the tolerance first, then halves
+    /// of it while they cost less (a longer transition is faster through the corner but replaces
+    /// more of a faster neighbour), so a larger tolerance, which admits every cut a smaller one
+    /// did, does not keep a costlier one among those it compares; with `halvings`, that many
+    /// halves of the longest only. None: a stop costs less; else the cut chosen and the longest
+    /// admitted.
+    fn cuts(&self, mut d: f64, share: f64, halvings: Option<u32>) -> Option<(Found, f64)> {
+        let (held, next, m) = (self.held, self.next, self.m);
+        let found = |d: f64, h: Hermite, v_max: f64, halvings: u32| {
+            // Faster than the slower neighbour, it runs at that one's speed (in its chain, or
+            // with no room to ramp between): its time at the slowest of the three.
+            let v = v_max.min(self.sides[0].v).min(self.sides[1].v);
+            let cost = local_cost(d, h.length(), v, self.sides);
+            Found {
+                cost,
+                d,
+                h,
+                v: v_max,
+                share,
+                halvings,
+            }
+        };
+        let (mut best, mut longest): (Option<Found>, f64) = (None, 0.0);
+        for _ in 0..MAX_SHRINKS {
+            if d.is_nan() || d <= MIN_LENGTH {
+                break;
+            }
+            let a = jet_at(&held.piece, held.piece.length() - d);
+            let b = jet_at(&next.piece, d);
+            // Parameter speed 1 at both ends: λ is 2·share times the cut.
+            let h = Hermite::new(a, b, 2.0 * share * d);
+            let within = || {
+                self.lines || {
+                    let (before, after) = (held.moves_at_end(d), next.moves_at_start(d));
+                    within_tolerance(&h, before, after)
+                }
+            };
+            match &best {
+                None => {
+                    if within() {
+                        let v_max = faster_than_a_stop(&h, self.feed, m)?;
+                        (best, longest) = (Some(found(d, h, v_max, 0)), d);
+                        match halvings {
+                            Some(0) => break,
+                            Some(k) => d *= COMPARE_SHRINK.powi(k as i32),
+                            None => d *= COMPARE_SHRINK,
+                        }
+                    } else {
+                        d *= SHRINK;
+                    }
+                }
+                Some(b) => {
+                    let k = b.halvings + 1;
+                    let shorter = found(d, h, own_speed(&h, self.feed, m), halvings.unwrap_or(k));
+                    if halvings.is_some() {
+                        if within() {
+                            best = Some(shorter);
+                        }
+                        break;
+                    }
+                    if shorter.cost >= b.cost - SAVING || !within() {
+                        break;
+                    }
+                    best = Some(shorter);
+                    d *= COMPARE_SHRINK;
+                }
+            }
+        }
+        best.map(|b| (b, longest))
+    }
 }
 
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
@@ -213,31 +317,75 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
             };
             // Every ramp here rises from v (one forward envelope).
             let rise = scurve7_banded::Rise::from(&banded, v.max(0.0));
-            let (mut t, mut x) = rise.time_distance(v_side);
-            if x > s.length {
-                (t, x) = rise.time_distance(rise.max_speed(s.length));
-            }
+            let (t, x) = ramp_within(&rise, v_side, (s.length - d).max(0.0));
             cost += t - x / v_side;
         }
     }
     cost
 }
 
-/// Every point of `h` within `tol` of one of the two programmed pieces: samples every λ/N,
-/// each at most tol − σ_max·λ/(2N) away, where σ_max bounds |p'| — no point of the curve is
-/// farther than σ_max·λ/(2N) from a sample.
-fn within_tolerance(h: &Hermite, a: &Source, b: &Source, tol: f64) -> bool {
-    let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
-    let bound = tol - guard;
-    (0..=DEVIATION_SAMPLES).all(|k| {
-        let p = h.point(h.length() * k as f64 / DEVIATION_SAMPLES as f64);
-        // min(|pa|, |pb|) ≤ bound: the piece the sample starts nearer first (the other often
-        // needs no distance).
-        let (near, far) = if 2 * k <= DEVIATION_SAMPLES {
-            (a, b)
+/// Time and distance of `rise` up to `v_side`, or over `rest` where it ends before (the side is
+/// shorter than the ramp): the exit speed whose distance is `rest` to `RAMP_FIT` of it, by the
+/// Illinois regula falsi between the rise's start and `v_side` (a cost to compare cuts by, not a
+/// speed to plan with).
+fn ramp_within(rise: &scurve7_banded::Rise, v_side: f64, rest: f64) -> (f64, f64) {
+    let (t_top, x_top) = rise.time_distance(v_side);
+    if x_top <= rest {
+        return (t_top, x_top);
+    }
+    let (mut lo, mut g_lo) = (rise.lo(), -rest);
+    let (mut hi, mut g_hi) = (v_side, x_top - rest);
+    let mut at = (0.0, 0.0);
+    let mut last_lo = None;
+    for _ in 0..RAMP_STEPS {
+        let mut w = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+        if !(w > lo && w < hi) {
+            w = 0.5 * (lo + hi);
+        }
+        at = rise.time_distance(w);
+        let g = at.1 - rest;
+        if g.abs() <= RAMP_FIT * rest {
+            break;
+        }
+        // Illinois: the end that stays twice has its value halved.
+        if g < 0.0 {
+            (lo, g_lo) = (w, g);
+            if last_lo == Some(true) {
+                g_hi *= 0.5;
+            }
+            last_lo = Some(true);
         } else {
-            (b, a)
-        };
-        near.distance(p) <= bound || far.distance(p) <= bound
+            (hi, g_hi) = (w, g);
+            if last_lo == Some(false) {
+                g_lo *= 0.5;
+            }
+            last_lo = Some(false);
+        }
+    }
+    at
+}
+
+/// Every point of `h` within the tolerance of one of the programmed moves it replaces (`before`
+/// and `after` the corner, in path order): samples every λ/N, each at most tolerance −
+/// σ_max·λ/(2N) from one, where σ_max bounds |p'| — no point of the curve is farther than
+/// σ_max·λ/(2N) from a sample.
+fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> bool {
+    let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
+    let near = |mv: &Move, p| mv.source.distance(p) <= mv.tolerance - guard;
+    // From the middle outwards: a cut too long fails first near the apex, where the transition
+    // is farthest from both pieces (the cut search tries several before one keeps it).
+    let half = DEVIATION_SAMPLES / 2;
+    let order = (0..=half).flat_map(|i| [half - i, half + i]).skip(1);
+    order.into_iter().all(|k| {
+        let p = h.point(h.length() * k as f64 / DEVIATION_SAMPLES as f64);
+        // The moves nearest the sample's end of the transition first (the others often need
+        // no distance).
+        let mut first = before.iter().rev();
+        let mut second = after.iter();
+        if 2 * k <= DEVIATION_SAMPLES {
+            first.any(|mv| near(mv, p)) || second.any(|mv| near(mv, p))
+        } else {
+            second.any(|mv| near(mv, p)) || first.any(|mv| near(mv, p))
+        }
     })
 }

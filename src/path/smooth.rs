@@ -2,48 +2,39 @@
 //! segments smoothed as one curve, and the result grouped into chains that one feed profile runs.
 //!
 //! Three streaming stages, each holding back at most one item:
-//! 1. Vertices → spans. A vertex between two short G1 lines that turn gently is *smooth*: the
-//!    circle through it and its two neighbours gives its tangent and curvature, and the span
-//!    between two such vertices is the quintic Hermite matching both (a compressor in the manner
-//!    of the 840D's COMPCURV, but interpolating the programmed points). A span is kept only if
-//!    its Bézier control points — hence the whole span — lie within half the tolerance of its
-//!    programmed chord; otherwise it stays the programmed line.
-//! 2. Junctions (junction.rs). Where two spans do not already join with equal first and second derivatives,
-//!    both are cut back by d and a quintic Hermite transition (hermite.rs; eq. 45–52 for two
-//!    lines) joins them: d from the apex distance of eq. 52 at the tolerance, at most half of
-//!    each programmed span, shrunk until the transition stays within the tolerance of the
-//!    programmed geometry (eq. 52 between lines; a sampled check with a guaranteed guard
-//!    between samples otherwise), and a stop instead where the transition would be slower. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the
-//!    program's stops stop the path.
+//! 1. Vertices → spans (fit.rs). A vertex between two short G1 lines that turn gently is
+//!    *smooth*; a run of such moves is fitted with quintic Hermite spans between knots, each
+//!    kept only if it lies within the tolerance of its programmed chords, else split down to the
+//!    programmed line.
+//! 2. Junctions (junction.rs). Where two spans do not already join with equal first and second
+//!    derivatives, both are cut back by d and a quintic Hermite transition (hermite.rs; eq.
+//!    45–52 for two lines) joins them: d from the apex distance at the tolerance, at most half
+//!    of the programmed line at each end, shrunk until the transition stays within the tolerance
+//!    of the programmed geometry (closed form between lines; a sampled check with a guaranteed
+//!    guard between samples otherwise), and a stop instead where the transition would be
+//!    slower. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the program's stops
+//!    stop the path.
 //! 3. Chains. Consecutive pieces of similar speed class join one chain (chain.rs); its limits
 //!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
 
 use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
-use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
+use super::fit::VertexJet;
+use super::hermite::{Jet, BOUND_PIECES};
 use super::junction::transition;
 use super::source_map;
-use super::tolerance::{COLLINEAR_SIN2, JOINT_D1_EPS, JOINT_D2_EPS, KNOT_SLACK, MIN_LENGTH};
+use super::tolerance::{JOINT_D1_EPS, JOINT_D2_EPS, MIN_LENGTH};
 use super::{line_limits, max_bounds, PathBlock, Segment};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
 use crate::feed::{scurve7_banded, Limits, ProfileKind};
-use crate::geometry::{add, cross, dot, norm, scale, sub, unit, Line};
-use crate::geometry::{distance_to_segment, Source};
+use crate::geometry::{dot, norm, sub, Line, Source};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 
 /// Largest turning angle at a smooth vertex (cos), and longest segment smoothed.
 const SMOOTH_MIN_COS: f64 = 0.866_025_403_784_438_6; // 30°
 const SMOOTH_MAX_SEGMENT: f64 = 5e-3;
-/// Share of the tolerance a fitted span may use: a span that needs all of it fits badly (its
-/// curvature swings), and splitting it is faster to run.
-const SPAN_SHARE: f64 = 0.7;
-/// Parts of each chord's range whose control points are checked.
-const CHECK_PIECES: usize = 4;
-/// Knot spacing of the fitted spans (m): long enough that rounding of the programmed points
-/// does not show as jerk, short enough to follow curvature.
-const KNOT_LENGTH: f64 = 2e-3;
 /// Moves held at most in one run before its spans are fitted.
 const RUN_MAX: usize = 1024;
 /// Pieces at most in one chain.
@@ -61,55 +52,17 @@ pub struct Move {
     pub exact: bool,
 }
 
-/// A vertex's tangent and curvature when it is smooth.
-type VertexJet = Option<(Vec3, Vec3)>;
-
-/// Tangent and curvature vector at `b` of the circle through a, b, c (travelled a → b → c).
-fn circle_jet(a: Vec3, b: Vec3, c: Vec3) -> (Vec3, Vec3) {
-    let (u, w) = (sub(a, b), sub(c, b));
-    let n = cross(u, w);
-    let n2 = dot(n, n);
-    let chord = sub(c, a);
-    if n2 <= COLLINEAR_SIN2 * dot(u, u) * dot(w, w) {
-        return (unit(chord), [0.0; 3]);
-    }
-    // Circumcentre relative to b: ((|u|²·w − |w|²·u) × n) / (2|n|²).
-    let o = scale(cross(sub(scale(w, dot(u, u)), scale(u, dot(w, w))), n), 0.5 / n2);
-    let k = scale(o, 1.0 / dot(o, o));
-    let on = unit(o);
-    let t = unit(sub(chord, scale(on, dot(chord, on))));
-    (t, k)
-}
-
-/// Jet at the end point `a` of the circle through a, b, c (travelled from a towards b; with
-/// `reverse`, arriving at a from b).
-fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
-    let (t_mid, k_mid) = circle_jet(a, b, c);
-    let toward = if reverse { sub(a, b) } else { sub(b, a) };
-    if dot(k_mid, k_mid) == 0.0 {
-        // Collinear points: the chord's direction, pointing the way the path runs at `a`.
-        let t = if dot(t_mid, toward) < 0.0 {
-            scale(t_mid, -1.0)
-        } else {
-            t_mid
-        };
-        return (t, k_mid);
-    }
-    let o = add(b, scale(k_mid, 1.0 / dot(k_mid, k_mid)));
-    let r = sub(o, a);
-    let k = scale(r, 1.0 / dot(r, r));
-    let rn = unit(r);
-    (unit(sub(toward, scale(rn, dot(toward, rn)))), k)
-}
-
-/// A span on its way through stage 2: the piece left of it, the programmed moves at its ends and
-/// where the moves after the first begin on it (source_map.rs).
+/// A span on its way through stage 2: the piece left of it, the programmed moves it stands for
+/// and where the moves after the first begin on it (source_map.rs).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub(super) struct Span {
     pub(super) piece: Piece,
     pub(super) first: Move,
     pub(super) last: Move,
     pub(super) marks: Vec<(f64, u32)>,
+    /// The programmed moves, in order: the curve's parameter u runs along them as along their
+    /// lengths (a transition checks its cut against those it replaces).
+    pub(super) moves: Vec<Move>,
     /// The curve's own limits once computed (junction.rs needs them before stage 3 does; a
     /// cache, recomputed after a restore).
     #[serde(skip)]
@@ -117,14 +70,78 @@ pub(super) struct Span {
 }
 
 impl Span {
-    fn single(curve: Curve, mv: Move) -> Span {
+    pub(super) fn single(curve: Curve, mv: Move) -> Span {
         Span {
             piece: Piece::whole(curve, mv.line),
             first: mv,
             last: mv,
             marks: Vec::new(),
+            moves: vec![mv],
             own: None,
         }
+    }
+
+    /// The line of `moves`, which continue one line.
+    pub(super) fn line(moves: &[Move]) -> Span {
+        let (first, last) = (moves[0], moves[moves.len() - 1]);
+        let line = Line {
+            start: start_of(&first),
+            end: end_of(&last),
+        };
+        Span::fitted(Piece::whole(Curve::Line(line), first.line), moves)
+    }
+
+    /// `piece` standing for `moves` (u along it as along the moves).
+    pub(super) fn fitted(piece: Piece, moves: &[Move]) -> Span {
+        Span {
+            piece,
+            first: moves[0],
+            last: moves[moves.len() - 1],
+            marks: source_map::span_marks(moves),
+            moves: moves.to_vec(),
+            own: None,
+        }
+    }
+
+    /// The moves the last `d` of its piece stands for, in order.
+    pub(super) fn moves_at_end(&self, d: f64) -> &[Move] {
+        let from = self.piece.u1 - d;
+        let mut start = 0.0;
+        let k = self.moves.iter().position(|mv| {
+            start += mv.source.length();
+            start > from
+        });
+        &self.moves[k.unwrap_or(self.moves.len() - 1)..]
+    }
+
+    /// The moves the first `d` of its piece stands for, in order.
+    pub(super) fn moves_at_start(&self, d: f64) -> &[Move] {
+        let to = self.piece.u0 + d;
+        let (mut start, mut first, mut end) = (0.0, None, self.moves.len());
+        for (k, mv) in self.moves.iter().enumerate() {
+            let next = start + mv.source.length();
+            if next > self.piece.u0 && first.is_none() {
+                first = Some(k);
+            }
+            if start >= to && first.is_some() {
+                end = k;
+                break;
+            }
+            start = next;
+        }
+        let first = first.unwrap_or(self.moves.len() - 1);
+        &self.moves[first..end.max(first + 1)]
+    }
+}
+
+/// The programmed geometry of `moves` (one move, or moves that continue one line) as one.
+pub(super) fn programmed(moves: &[Move]) -> Source {
+    match moves {
+        [one] => one.source,
+        _ => Source::Line(Line {
+            start: start_of(&moves[0]),
+            end: end_of(&moves[moves.len() - 1]),
+        }),
     }
 }
 
@@ -133,8 +150,8 @@ impl Span {
 pub struct SmoothBuilder {
     /// Stage 1: the run of moves whose inner vertices are smooth, and the jet at its first vertex
     /// (None: a corner, or the start).
-    run: Vec<Move>,
-    run_jet: VertexJet,
+    pub(super) run: Vec<Move>,
+    pub(super) run_jet: VertexJet,
     /// Stage 2: the span waiting for its junction with the next.
     held: Option<Span>,
     /// Stage 3: the chain being filled, its pieces' bound cells, feed and speed class.
@@ -160,8 +177,10 @@ impl SmoothBuilder {
         self.run.iter().try_for_each(programmed)?;
         if let Some(s) = &self.held {
             one_piece(&s.piece)?;
-            programmed(&s.first)?;
-            programmed(&s.last)?;
+            [s.first, s.last]
+                .iter()
+                .chain(&s.moves)
+                .try_for_each(programmed)?;
         }
         pieces(&self.chain)
     }
@@ -206,145 +225,8 @@ impl SmoothBuilder {
         self.flush_held(m, out);
     }
 
-    /// Stage 1: fit the run with Hermite spans between knots about `KNOT_LENGTH` apart; with
-    /// `keep_tail`, the last span stays in the run (its first knot's jet carried) for the moves
-    /// still to come.
-    fn flush_run(&mut self, keep_tail: bool, m: &Machine, out: &mut Vec<PathBlock>) {
-        let run = std::mem::take(&mut self.run);
-        let jet0 = self.run_jet.take();
-        let Some(first) = run.first().copied() else { return };
-        if run.len() == 1 && jet0.is_none() {
-            let curve = match first.source {
-                Source::Arc(a) => Curve::Arc(a),
-                Source::Line(l) => Curve::Line(l),
-            };
-            self.junction(Span::single(curve, first), m, out);
-            return;
-        }
-        let verts: Vec<Vec3> = std::iter::once(start_of(&first))
-            .chain(run.iter().map(end_of))
-            .collect();
-        let knots = choose_knots(&run);
-        let mut jets: Vec<VertexJet> = vec![None; knots.len()];
-        for j in 1..knots.len() - 1 {
-            jets[j] = Some(circle_jet(
-                verts[knots[j - 1]],
-                verts[knots[j]],
-                verts[knots[j + 1]],
-            ));
-        }
-        // The run's ends continue the circle through their three nearest knots (or vertices), so
-        // curvature does not fall to zero there; the transition to the neighbour takes over.
-        let n = knots.len();
-        let ends = if n >= 3 {
-            Some((
-                [knots[0], knots[1], knots[2]],
-                [knots[n - 1], knots[n - 2], knots[n - 3]],
-            ))
-        } else if run.len() >= 2 {
-            let mid = run.len() / 2;
-            Some(([0, mid, run.len()], [run.len(), mid, 0]))
-        } else {
-            None
-        };
-        if let Some((s, e)) = ends {
-            jets[0] = Some(circle_jet_at_end(verts[s[0]], verts[s[1]], verts[s[2]], false));
-            jets[n - 1] = Some(circle_jet_at_end(verts[e[0]], verts[e[1]], verts[e[2]], true));
-        }
-        if jet0.is_some() {
-            jets[0] = jet0;
-        }
-        let spans = if keep_tail && knots.len() >= 3 {
-            knots.len() - 2
-        } else {
-            knots.len() - 1
-        };
-        for j in 0..spans {
-            self.fit(&run[knots[j]..knots[j + 1]], jets[j], jets[j + 1], m, out);
-        }
-        if spans < knots.len() - 1 {
-            self.run = run[knots[spans]..].to_vec();
-            self.run_jet = jets[spans];
-        }
-    }
-
-    /// One Hermite span over `moves` from jet `a` to jet `b` if it stays within the tolerance
-    /// of every programmed chord (guaranteed by the control points of the curve over
-    /// each chord's parameter range); else split at the middle vertex, down to single lines.
-    fn fit(&mut self, moves: &[Move], a: VertexJet, b: VertexJet, m: &Machine, out: &mut Vec<PathBlock>) {
-        let (first, last) = (moves[0], moves[moves.len() - 1]);
-        let line_of = |mv: &Move| match mv.source {
-            Source::Line(l) => l,
-            Source::Arc(_) => unreachable!("runs of more than one move hold lines only"),
-        };
-        if moves.len() == 1 && a.is_none() && b.is_none() {
-            self.junction(Span::single(Curve::Line(line_of(&first)), first), m, out);
-            return;
-        }
-        let jet = |p: Vec3, v: VertexJet, mv: &Move| {
-            let (t, k) = v.unwrap_or((line_of(mv).direction(), [0.0; 3]));
-            Jet { p, d1: t, d2: k }
-        };
-        let lambda: f64 = moves.iter().map(|mv| mv.source.length()).sum();
-        let h = Hermite::new(
-            jet(start_of(&first), a, &first),
-            jet(end_of(&last), b, &last),
-            lambda,
-        );
-        let mut u = 0.0;
-        let mut inside = true;
-        let mut jet_u = h.jet(0.0);
-        'moves: for mv in moves {
-            let l = line_of(mv);
-            let ub = (u + l.length()).min(lambda);
-            // The curve over the chord's range, in `CHECK_PIECES` parts: each part lies in the
-            // hull of its control points, which come close to the curve as the parts shrink.
-            let step = (ub - u) / CHECK_PIECES as f64;
-            for k in 1..=CHECK_PIECES {
-                let u1 = if k == CHECK_PIECES {
-                    ub
-                } else {
-                    u + step * k as f64
-                };
-                let jet_next = h.jet(u1);
-                inside = bezier(&jet_u, &jet_next, step)
-                    .iter()
-                    .all(|&c| distance_to_segment(c, l.start, l.end) <= SPAN_SHARE * mv.tolerance);
-                jet_u = jet_next;
-                if !inside {
-                    break 'moves;
-                }
-            }
-            u = ub;
-        }
-        if inside {
-            let span = Span {
-                piece: Piece::whole(Curve::Hermite(h), first.line),
-                first,
-                last,
-                marks: source_map::span_marks(moves),
-                own: None,
-            };
-            self.junction(span, m, out);
-        } else if moves.len() == 1 {
-            self.junction(Span::single(Curve::Line(line_of(&first)), first), m, out);
-        } else {
-            let mid = moves.len() / 2;
-            let v = |i: usize| {
-                if i == 0 {
-                    start_of(&moves[0])
-                } else {
-                    end_of(&moves[i - 1])
-                }
-            };
-            let jm = Some(circle_jet(v(0), v(mid), v(moves.len())));
-            self.fit(&moves[..mid], a, jm, m, out);
-            self.fit(&moves[mid..], jm, b, m, out);
-        }
-    }
-
     /// Stage 2: join `next` to the held span.
-    fn junction(&mut self, mut next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
+    pub(super) fn junction(&mut self, mut next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
         let Some(mut held) = self.held.take() else {
             self.held = Some(next);
             return;
@@ -359,18 +241,18 @@ impl SmoothBuilder {
         }
         match transition(&mut held, &mut next, m) {
             Some((d_held, d_next, h, limits)) => {
+                let symmetric = matches!(
+                    (held.piece.curve, next.piece.curve),
+                    (Curve::Line(_), Curve::Line(_))
+                );
+                let (before, after) = (held.moves_at_end(d_held), next.moves_at_start(d_next));
+                let (line, marks) = source_map::transition_marks(&h, before, after, symmetric);
                 held.piece.u1 -= d_held;
                 next.piece.u0 += d_next;
                 let own = held.own.take();
                 self.piece(held.piece, &held.marks, held.last.feed, false, own, m, out);
                 let feed = held.last.feed.min(next.first.feed);
-                let symmetric = matches!(
-                    (held.piece.curve, next.piece.curve),
-                    (Curve::Line(_), Curve::Line(_))
-                );
-                let (a, b, tol) = (&held.last.source, &next.first.source, held.last.tolerance);
-                let marks = [(source_map::switch(&h, a, b, tol, symmetric), next.first.line)];
-                let piece = Piece::whole(Curve::Hermite(h), held.last.line);
+                let piece = Piece::whole(Curve::Hermite(h), line);
                 self.piece(piece, &marks, feed, false, Some(limits), m, out);
                 self.held = Some(next);
             }
@@ -470,9 +352,10 @@ impl SmoothBuilder {
             return;
         }
         let chain = std::mem::take(&mut self.chain);
-        let first = chain.pieces[0];
+        let (first, line) = (chain.pieces[0], chain.line_at(0.0));
         let (segment, limits, bands, sigma) = match (chain.pieces.len(), first.curve) {
-            (1, Curve::Line(_)) => {
+            // A plain line block reports one program line (a line of several moves stays a chain).
+            (1, Curve::Line(_)) if chain.one_source() => {
                 let line = Line {
                     start: first.start(),
                     end: first.end(),
@@ -490,7 +373,7 @@ impl SmoothBuilder {
             }
         };
         out.push(PathBlock {
-            line: first.line,
+            line,
             segment,
             v_feed: (self.chain_feed / sigma).max(0.0).min(limits.v_max),
             limits,
@@ -572,33 +455,16 @@ fn smooth_vertex(prev: &Move, next: &Move) -> bool {
         || cos < SMOOTH_MIN_COS)
 }
 
-fn start_of(mv: &Move) -> Vec3 {
+pub(super) fn start_of(mv: &Move) -> Vec3 {
     match mv.source {
         Source::Line(l) => l.start,
         Source::Arc(a) => a.start,
     }
 }
 
-fn end_of(mv: &Move) -> Vec3 {
+pub(super) fn end_of(mv: &Move) -> Vec3 {
     match mv.source {
         Source::Line(l) => l.end,
         Source::Arc(a) => a.end,
     }
-}
-
-/// Knot indices into the run's vertices (0 … moves): about `KNOT_LENGTH` apart in length.
-fn choose_knots(run: &[Move]) -> Vec<usize> {
-    let total: f64 = run.iter().map(|mv| mv.source.length()).sum();
-    let spans = ((total / KNOT_LENGTH).round() as usize).clamp(1, run.len());
-    let mut knots = vec![0];
-    let mut acc = 0.0;
-    for (i, mv) in run.iter().enumerate() {
-        acc += mv.source.length();
-        let next_target = total * knots.len() as f64 / spans as f64;
-        if i + 1 < run.len() && acc >= next_target * (1.0 - KNOT_SLACK) {
-            knots.push(i + 1);
-        }
-    }
-    knots.push(run.len());
-    knots
 }

@@ -9,11 +9,16 @@
 //! - a transition passes from the move before it to the move after it where the samples of its
 //!   tolerance check (each within tol − guard of one of the two, no point farther than the guard
 //!   from the nearest sample) turn nearer the second; between two lines, whose transition is
-//!   symmetric about the bisector of the corner, at its middle.
+//!   symmetric about the bisector of the corner, at its middle;
+//! - where the programmed geometry on one side of a transition is several moves that continue
+//!   one line (fit.rs `continues`), each point of the transition on that side reports the move
+//!   its foot on the line lies in: the point is within the tolerance of the line, so of that
+//!   move.
 
 use super::hermite::Hermite;
-use super::smooth::Move;
-use crate::geometry::Source;
+use super::smooth::{programmed, start_of, Move};
+use super::tolerance::FOOT_BISECTIONS;
+use crate::geometry::{dot, sub, unit, Source};
 
 /// Samples of a transition (as its tolerance check, junction.rs).
 const SAMPLES: usize = 64;
@@ -29,41 +34,88 @@ pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
     marks
 }
 
-/// Parameter of transition `h` where it passes from `a` (the move before) to `b` (the move
-/// after): the middle of the sample interval where the samples turn nearer `b`, if every sample
-/// before it is within `tol` − guard of `a` and every one after within `tol` − guard of `b`;
-/// else, and between two lines (`symmetric`), the middle of the transition.
-pub(super) fn switch(h: &Hermite, a: &Source, b: &Source, tol: f64, symmetric: bool) -> f64 {
-    let middle = 0.5 * h.length();
+/// The lines transition `h` reports: the block at its start, and where each later one begins
+/// (increasing u). It replaces the end of the moves `before` it and the start of those `after`
+/// it (in path order). Between two lines (`symmetric`: a move or the moves of one line on each
+/// side), each half is within the tolerance of its line: the first half reports the moves before,
+/// the second those after, along each line as the foot of its points. Otherwise each sample of
+/// the tolerance check reports the nearest move from the last one's on (or stays where that is
+/// out of reach and the last is not), and the report changes halfway between samples: no point
+/// is farther than the guard from the sample it reports with.
+pub(super) fn transition_marks(
+    h: &Hermite,
+    before: &[Move],
+    after: &[Move],
+    symmetric: bool,
+) -> (u32, Vec<(f64, u32)>) {
+    let mut marks = Vec::new();
     if symmetric {
-        return middle;
+        let middle = 0.5 * h.length();
+        let own = along(h, before, 0.0, middle, &mut marks);
+        let mut later = Vec::new();
+        let at_middle = along(h, after, middle, h.length(), &mut later);
+        marks.push((middle, at_middle));
+        marks.extend(later);
+        return (own, marks);
     }
+    let moves: Vec<&Move> = before.iter().chain(after).collect();
     let step = h.length() / SAMPLES as f64;
     let guard = h.speed_bound() * step / 2.0;
-    let points: [_; SAMPLES + 1] = std::array::from_fn(|k| h.point(step * k as f64));
-    let db = points.map(|p| b.distance(p));
-    // The distances to `a` up to where the samples turn nearer `b` (the rest only if needed:
-    // the switch is valid there on every transition but a few).
-    let mut da = [f64::NAN; SAMPLES + 1];
-    let mut turn = None;
+    let holds = |mv: &Move, d: f64| d <= mv.tolerance - guard;
+    let (mut at, mut own) = (0, moves[0].line);
     for k in 0..=SAMPLES {
-        da[k] = a.distance(points[k]);
-        if db[k] < da[k] {
-            turn = Some(k);
-            break;
+        let p = h.point(step * k as f64);
+        let d: Vec<f64> = moves[at..].iter().map(|mv| mv.source.distance(p)).collect();
+        let j = (0..d.len()).fold(0, |j, i| if d[i] < d[j] { i } else { j });
+        if j > 0 && (holds(moves[at + j], d[j]) || !holds(moves[at], d[0])) {
+            at += j;
+            if k > 0 {
+                marks.push((step * (k as f64 - 0.5), moves[at].line));
+            }
+        }
+        if k == 0 {
+            own = moves[at].line;
         }
     }
-    let nearer_b = turn.unwrap_or(SAMPLES).max(1);
-    let valid = |da: &[f64], k: usize| {
-        da[..k].iter().all(|&d| d <= tol - guard) && db[k..].iter().all(|&d| d <= tol - guard)
+    (own, marks)
+}
+
+/// For u in [u0, u1] on `h`, near the line of `moves`: the move the foot of h(u0) on the line
+/// lies in, and a mark where the foot passes into each later move (bisection: on either part
+/// of a transition the foot moves forward along the line, the curve turning less than a right
+/// angle from it there).
+fn along(h: &Hermite, moves: &[Move], u0: f64, u1: f64, marks: &mut Vec<(f64, u32)>) -> u32 {
+    let last = moves[moves.len() - 1];
+    if moves.len() == 1 {
+        return last.line;
+    }
+    let Source::Line(line) = programmed(moves) else {
+        return last.line;
     };
-    let k = if valid(&da, nearer_b) {
-        Some(nearer_b)
-    } else {
-        for k in turn.map_or(SAMPLES + 1, |k| k + 1)..=SAMPLES {
-            da[k] = a.distance(points[k]);
+    let (start, dir) = (start_of(&moves[0]), unit(sub(line.end, line.start)));
+    let foot = |u: f64| dot(sub(h.point(u), start), dir);
+    let (foot0, foot1) = (foot(u0), foot(u1));
+    let mut end = 0.0;
+    let mut at_u0 = None;
+    for pair in moves.windows(2) {
+        end += pair[0].source.length();
+        if foot0 >= end {
+            continue;
         }
-        (1..=SAMPLES).find(|&k| valid(&da, k))
-    };
-    k.map_or(middle, |k| step * (k as f64 - 0.5))
+        at_u0.get_or_insert(pair[0].line);
+        if foot1 <= end {
+            break;
+        }
+        let (mut lo, mut hi) = (u0, u1);
+        for _ in 0..FOOT_BISECTIONS {
+            let mid = 0.5 * (lo + hi);
+            if foot(mid) < end {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        marks.push((hi, pair[1].line));
+    }
+    at_u0.unwrap_or(last.line)
 }

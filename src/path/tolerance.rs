@@ -35,6 +35,13 @@ pub const BOUND_ROUNDING: f64 = 1e-12;
 pub const LENGTH_ROUNDING: f64 = 1e-15;
 /// A part that reaches within this share of its whole's length reaches its end.
 pub const END_SHARE: f64 = 1e-15;
+/// Bisection steps finding where a point's foot on a line passes a move's end (source_map.rs):
+/// the interval shrinks to 2⁻⁶⁰ of a transition, far below rounding of its points.
+pub const FOOT_BISECTIONS: usize = 60;
+/// A neighbour's ramp over what a transition leaves of it (junction.rs): the distance within this
+/// share of it, in at most `RAMP_STEPS` steps (a cost to compare cuts by).
+pub const RAMP_FIT: f64 = 1e-3;
+pub const RAMP_STEPS: usize = 12;
 /// A run's cumulative length within this share of a knot's target places the knot there.
 pub const KNOT_SLACK: f64 = 1e-9;
 /// A restored curve must end within this share of its scale at its end point, and no power term

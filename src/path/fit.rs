@@ -1,0 +1,354 @@
+//! Stage 1 of the `smooth` corner mode (smooth.rs): a run of moves whose inner vertices are
+//! smooth, fitted with quintic Hermite spans between knots. A knot's tangent and curvature are
+//! those of the circle through it and its neighbouring knots (a compressor in the manner of the
+//! 840D's COMPCURV, but interpolating the programmed points). A span is kept only if its Bézier
+//! control points — hence the whole span — lie within `SPAN_SHARE` of the tolerance of its
+//! programmed chords; otherwise it is split at a vertex, down to the programmed line.
+//!
+//! Moves that continue one line (`continues`: a G64 Q line split at its merged vertices for the
+//! blocks it reports, CAM output that splits a straight cut) are one line here: their inner
+//! vertices are neither knots nor split points, and a span that does not fit over them is the
+//! line itself, whose junctions the transitions then cut along its whole length.
+
+use super::chain::{Curve, Piece};
+use super::hermite::{bezier, Hermite, Jet};
+use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span};
+use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
+use super::PathBlock;
+use crate::config::Machine;
+use crate::geometry::{add, cross, distance_to_segment, dot, norm, scale, sub, unit, Line, Source};
+use crate::Vec3;
+
+/// Share of the tolerance a fitted span may use: a span that needs all of it fits badly (its
+/// curvature swings), and splitting it is faster to run.
+const SPAN_SHARE: f64 = 0.7;
+/// Parts of each chord's range whose control points are checked.
+const CHECK_PIECES: usize = 4;
+/// Knot spacing of the fitted spans (m): long enough that rounding of the programmed points
+/// does not show as jerk, short enough to follow curvature.
+const KNOT_LENGTH: f64 = 2e-3;
+/// Largest turning between two knots (rad): three knots on one bend of at most twice this.
+const KNOT_TURN: f64 = std::f64::consts::FRAC_PI_4;
+/// A knot's neighbours more unequal than this along the path make its jet one-sided (`Vertices::jet`).
+const BALANCE: f64 = 3.0;
+/// Share of the moves' turns that their net turn must reach to count as one bend.
+const COHERENT: f64 = 0.5;
+
+/// A vertex's tangent and curvature when it is smooth.
+pub(super) type VertexJet = Option<(Vec3, Vec3)>;
+
+/// Tangent and curvature vector at `b` of the circle through a, b, c (travelled a → b → c).
+fn circle_jet(a: Vec3, b: Vec3, c: Vec3) -> (Vec3, Vec3) {
+    let (u, w) = (sub(a, b), sub(c, b));
+    let n = cross(u, w);
+    let n2 = dot(n, n);
+    let chord = sub(c, a);
+    if n2 <= COLLINEAR_SIN2 * dot(u, u) * dot(w, w) {
+        return (unit(chord), [0.0; 3]);
+    }
+    // Circumcentre relative to b: ((|u|²·w − |w|²·u) × n) / (2|n|²).
+    let o = scale(cross(sub(scale(w, dot(u, u)), scale(u, dot(w, w))), n), 0.5 / n2);
+    let k = scale(o, 1.0 / dot(o, o));
+    let on = unit(o);
+    let t = unit(sub(chord, scale(on, dot(chord, on))));
+    (t, k)
+}
+
+/// Jet at the end point `a` of the circle through a, b, c (travelled from a towards b; with
+/// `reverse`, arriving at a from b).
+fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
+    let (t_mid, k_mid) = circle_jet(a, b, c);
+    let toward = if reverse { sub(a, b) } else { sub(b, a) };
+    if dot(k_mid, k_mid) == 0.0 {
+        // Collinear points: the chord's direction, pointing the way the path runs at `a`.
+        let t = if dot(t_mid, toward) < 0.0 {
+            scale(t_mid, -1.0)
+        } else {
+            t_mid
+        };
+        return (t, k_mid);
+    }
+    let o = add(b, scale(k_mid, 1.0 / dot(k_mid, k_mid)));
+    let r = sub(o, a);
+    let k = scale(r, 1.0 / dot(r, r));
+    let rn = unit(r);
+    (unit(sub(toward, scale(rn, dot(toward, rn)))), k)
+}
+
+/// The run's vertices (0 … moves) and the path length to each.
+struct Vertices {
+    p: Vec<Vec3>,
+    s: Vec<f64>,
+}
+
+impl Vertices {
+    fn of(run: &[Move]) -> Vertices {
+        let p = std::iter::once(start_of(&run[0]))
+            .chain(run.iter().map(end_of))
+            .collect();
+        let mut s = vec![0.0];
+        s.extend(run.iter().scan(0.0, |acc, mv| {
+            *acc += mv.source.length();
+            Some(*acc)
+        }));
+        Vertices { p, s }
+    }
+
+    /// The jet at vertex `i` from the circle through it and the vertices `lo` before and `hi`
+    /// after it. Where one of those is more than `BALANCE` times as far along the path as the
+    /// other, the circle through three points on one side instead, on the nearer side whose two
+    /// steps are about even (beside a long move the circle through both sides stands for
+    /// neither: at a bend's end next to a straight row its tangent is off by degrees, its
+    /// curvature a tenth).
+    fn jet(&self, i: usize, lo: usize, hi: usize) -> (Vec3, Vec3) {
+        let s = &self.s;
+        let uneven = |a: f64, b: f64| a.max(b) / a.min(b);
+        let both = uneven(s[i] - s[lo], s[hi] - s[i]);
+        let across = circle_jet(self.p[lo], self.p[i], self.p[hi]);
+        if both <= BALANCE {
+            return across;
+        }
+        // A second step on each side: beyond `lo` (or `hi`) at least as long as the first, or
+        // the vertex between.
+        let last = self.p.len() - 1;
+        let before = (0..lo)
+            .rev()
+            .find(|&k| s[lo] - s[k] >= s[i] - s[lo])
+            .map(|k| (k, lo))
+            .or_else(|| (lo + 1 < i).then_some((lo, (lo + i) / 2)));
+        let after = (hi + 1..=last)
+            .find(|&k| s[k] - s[hi] >= s[hi] - s[i])
+            .map(|k| (hi, k))
+            .or_else(|| (i + 1 < hi).then_some(((i + hi) / 2, hi)));
+        // Of the sides whose two steps are even, the nearer.
+        let left = before
+            .filter(|&(far, near)| uneven(s[i] - s[near], s[near] - s[far]) <= BALANCE)
+            .map(|(far, near)| (s[i] - s[near], far, near));
+        let right = after
+            .filter(|&(near, far)| uneven(s[near] - s[i], s[far] - s[near]) <= BALANCE)
+            .map(|(near, far)| (s[near] - s[i], near, far));
+        match (left, right) {
+            (Some(l), r) if r.is_none_or(|r| l.0 <= r.0) => {
+                circle_jet_at_end(self.p[i], self.p[l.2], self.p[l.1], true)
+            }
+            (_, Some(r)) => circle_jet_at_end(self.p[i], self.p[r.1], self.p[r.2], false),
+            _ => across,
+        }
+    }
+}
+
+impl SmoothBuilder {
+    /// Fit the run with Hermite spans between knots about `KNOT_LENGTH` apart; with
+    /// `keep_tail`, the last span stays in the run (its first knot's jet carried) for the moves
+    /// still to come.
+    pub(super) fn flush_run(&mut self, keep_tail: bool, m: &Machine, out: &mut Vec<PathBlock>) {
+        let run = std::mem::take(&mut self.run);
+        let jet0 = self.run_jet.take();
+        let Some(first) = run.first().copied() else { return };
+        if run.len() == 1 && jet0.is_none() {
+            let curve = match first.source {
+                Source::Arc(a) => Curve::Arc(a),
+                Source::Line(l) => Curve::Line(l),
+            };
+            self.junction(Span::single(curve, first), m, out);
+            return;
+        }
+        let vertices = Vertices::of(&run);
+        let verts = &vertices.p;
+        let knots = choose_knots(&run);
+        let mut jets: Vec<VertexJet> = vec![None; knots.len()];
+        for j in 1..knots.len() - 1 {
+            jets[j] = Some(vertices.jet(knots[j], knots[j - 1], knots[j + 1]));
+        }
+        // The run's ends continue the circle through their three nearest knots (or vertices), so
+        // curvature does not fall to zero there; the transition to the neighbour takes over.
+        let n = knots.len();
+        let ends = if n >= 3 {
+            Some((
+                [knots[0], knots[1], knots[2]],
+                [knots[n - 1], knots[n - 2], knots[n - 3]],
+            ))
+        } else if run.len() >= 2 {
+            let mid = run.len() / 2;
+            Some(([0, mid, run.len()], [run.len(), mid, 0]))
+        } else {
+            None
+        };
+        if let Some((s, e)) = ends {
+            jets[0] = Some(circle_jet_at_end(verts[s[0]], verts[s[1]], verts[s[2]], false));
+            jets[n - 1] = Some(circle_jet_at_end(verts[e[0]], verts[e[1]], verts[e[2]], true));
+        }
+        if jet0.is_some() {
+            jets[0] = jet0;
+        }
+        let spans = if keep_tail && knots.len() >= 3 {
+            knots.len() - 2
+        } else {
+            knots.len() - 1
+        };
+        for j in 0..spans {
+            let span = Fit {
+                run: &run,
+                vertices: &vertices,
+                from: knots[j],
+                to: knots[j + 1],
+            };
+            self.fit(span, jets[j], jets[j + 1], m, out);
+        }
+        if spans < knots.len() - 1 {
+            self.run = run[knots[spans]..].to_vec();
+            self.run_jet = jets[spans];
+        }
+    }
+
+    /// One Hermite span over `moves` from jet `a` to jet `b` if it stays within the tolerance
+    /// of every programmed chord (guaranteed by the control points of the curve over
+    /// each chord's parameter range); else split at the vertex nearest the middle, down to the
+    /// programmed line.
+    fn fit(&mut self, span: Fit, a: VertexJet, b: VertexJet, m: &Machine, out: &mut Vec<PathBlock>) {
+        let moves = &span.run[span.from..span.to];
+        let (first, last) = (moves[0], moves[moves.len() - 1]);
+        let one_line = moves.windows(2).all(|w| continues(&w[0], &w[1]));
+        if one_line && a.is_none() && b.is_none() {
+            self.junction(Span::line(moves), m, out);
+            return;
+        }
+        let jet = |p: Vec3, v: VertexJet, mv: &Move| {
+            let (t, k) = v.unwrap_or((line_of(mv).direction(), [0.0; 3]));
+            Jet { p, d1: t, d2: k }
+        };
+        let lambda: f64 = moves.iter().map(|mv| mv.source.length()).sum();
+        let h = Hermite::new(
+            jet(start_of(&first), a, &first),
+            jet(end_of(&last), b, &last),
+            lambda,
+        );
+        if within_chords(&h, moves) {
+            let span = Span::fitted(Piece::whole(Curve::Hermite(h), first.line), moves);
+            self.junction(span, m, out);
+        } else if one_line {
+            self.junction(Span::line(moves), m, out);
+        } else {
+            let mid = span.from + split_vertex(moves);
+            let jm = Some(span.vertices.jet(mid, span.from, span.to));
+            self.fit(Fit { to: mid, ..span }, a, jm, m, out);
+            self.fit(Fit { from: mid, ..span }, jm, b, m, out);
+        }
+    }
+}
+
+/// The moves `from` … `to` of a run, being fitted.
+#[derive(Clone, Copy)]
+struct Fit<'a> {
+    run: &'a [Move],
+    vertices: &'a Vertices,
+    from: usize,
+    to: usize,
+}
+
+fn line_of(mv: &Move) -> Line {
+    match mv.source {
+        Source::Line(l) => l,
+        Source::Arc(_) => unreachable!("runs of more than one move hold lines only"),
+    }
+}
+
+/// The curve over each chord's range, in `CHECK_PIECES` parts, within `SPAN_SHARE` of the
+/// chord's tolerance: each part lies in the hull of its control points, which come close to the
+/// curve as the parts shrink.
+fn within_chords(h: &Hermite, moves: &[Move]) -> bool {
+    let lambda = h.length();
+    let mut u = 0.0;
+    let mut jet_u = h.jet(0.0);
+    for mv in moves {
+        let l = line_of(mv);
+        let ub = (u + l.length()).min(lambda);
+        let step = (ub - u) / CHECK_PIECES as f64;
+        for k in 1..=CHECK_PIECES {
+            let u1 = if k == CHECK_PIECES {
+                ub
+            } else {
+                u + step * k as f64
+            };
+            let jet_next = h.jet(u1);
+            let inside = bezier(&jet_u, &jet_next, step)
+                .iter()
+                .all(|&c| distance_to_segment(c, l.start, l.end) <= SPAN_SHARE * mv.tolerance);
+            if !inside {
+                return false;
+            }
+            jet_u = jet_next;
+        }
+        u = ub;
+    }
+    true
+}
+
+/// Two consecutive line moves that continue one line: the second starts where the first ends,
+/// in its direction (to rounding), at the same feed and tolerance.
+pub(super) fn continues(a: &Move, b: &Move) -> bool {
+    let (Source::Line(la), Source::Line(lb)) = (a.source, b.source) else {
+        return false;
+    };
+    !a.exact
+        && !b.exact
+        && a.feed == b.feed
+        && a.tolerance == b.tolerance
+        && la.end == lb.start
+        && 1.0 - dot(la.direction(), lb.direction()) <= COLLINEAR_EPS
+}
+
+/// The vertex (1 … moves − 1) to split a span at: of those that are not inside one line, the
+/// nearest the middle (one exists: the caller checked the moves are not one line).
+fn split_vertex(moves: &[Move]) -> usize {
+    let mid = moves.len() / 2;
+    let corner = |i: usize| (1..moves.len()).contains(&i) && !continues(&moves[i - 1], &moves[i]);
+    (0..moves.len())
+        .flat_map(|k| [mid + k, mid.wrapping_sub(k)])
+        .find(|&i| corner(i))
+        .unwrap_or(mid)
+}
+
+/// Knot indices into the run's vertices (0 … moves): about `KNOT_LENGTH` apart in length, and
+/// closer where the direction turns by more than `KNOT_TURN` from a knot's (the net turn, so
+/// rounding steps that turn back and forth do not count) over a stretch that bows out by more
+/// than the tolerance a span may use; none inside one line (`continues`).
+/// A knot's jet is the circle through it and its neighbouring knots, which stands for the curve
+/// there only while they lie on one bend of it: on a tight radius, 2 mm of chords turn through
+/// half a circle or more (the knots a turn apart coincide), and the spans between such knots
+/// have neither the curve's tangent nor its curvature.
+fn choose_knots(run: &[Move]) -> Vec<usize> {
+    let total: f64 = run.iter().map(|mv| mv.source.length()).sum();
+    let spans = ((total / KNOT_LENGTH).round() as usize).clamp(1, run.len());
+    let target = |k: usize| total * k as f64 / spans as f64 * (1.0 - KNOT_SLACK);
+    let mut knots = vec![0];
+    let (mut acc, mut grid) = (0.0, 1);
+    let (mut since, mut from, mut turns) = (0.0, line_of(&run[0]).direction(), 0.0);
+    for (i, pair) in run.windows(2).enumerate() {
+        acc += pair[0].source.length();
+        if continues(&pair[0], &pair[1]) {
+            continue;
+        }
+        let next = line_of(&pair[1]).direction();
+        turns += angle(line_of(&pair[0]).direction(), next);
+        let turn = angle(from, next);
+        // A bend: the moves turn one way (the net turn most of their turns: not a path that
+        // wanders) and bow out farther than the tolerance would absorb.
+        let bow = (acc - since) / turn * (1.0 - (0.5 * turn).cos());
+        let bend = turn > KNOT_TURN && turn > COHERENT * turns && bow > SPAN_SHARE * pair[0].tolerance;
+        if acc >= target(grid) || bend {
+            knots.push(i + 1);
+            (since, from, turns) = (acc, next, 0.0);
+            while acc >= target(grid) {
+                grid += 1;
+            }
+        }
+    }
+    knots.push(run.len());
+    knots
+}
+
+/// The angle between two unit vectors (rad).
+fn angle(u: Vec3, w: Vec3) -> f64 {
+    norm(cross(u, w)).atan2(dot(u, w))
+}
