@@ -114,6 +114,8 @@ struct Maxima {
     v: Peaks,
     a: Peaks,
     j: Peaks,
+    /// The largest |position| per axis: the finite differences' rounding floor scales with it.
+    extent: Peaks,
     following_error: Peaks,
     torque: Peaks,
     contour: f64,
@@ -132,7 +134,14 @@ impl Maxima {
             peaks.take(law);
             peaks.take(shown);
         }
+        self.extent.take(tick.p);
         self.ticks += 1;
+    }
+
+    /// Per axis, what rounding alone can show of velocity, acceleration and jerk (mm units).
+    fn floors(&self, period: f64) -> [[f64; 3]; 3] {
+        let per_axis = self.extent.0.map(|x| Differences::rounding(x, period));
+        std::array::from_fn(|order| per_axis.map(|f| f[order] / MM))
     }
 
     /// The drives' maxima (with `--servo`: the engine keeps their outputs once per step).
@@ -274,6 +283,7 @@ fn human_summary(
 ) -> Vec<(&'static str, String)> {
     let tick = engine.tick();
     let [v_lim, a_lim, j_lim] = summary::axis_limits(machine, MM);
+    let [v_floor, a_floor, j_floor] = max.floors(machine.interpolation_period);
     let period_ms = machine.interpolation_period * 1e3;
     let mut rows = vec![
         ("program", args.program.clone()),
@@ -301,15 +311,15 @@ fn human_summary(
         ("end position", summary::per_axis(tick.p.map(|x| x / MM), 3, "mm")),
         (
             "max axis velocity",
-            summary::against_limits(max.v.mm(), v_lim, "mm/s"),
+            summary::against_limits(max.v.mm(), v_lim, v_floor, "mm/s"),
         ),
         (
             "max axis acceleration",
-            summary::against_limits(max.a.mm(), a_lim, "mm/s²"),
+            summary::against_limits(max.a.mm(), a_lim, a_floor, "mm/s²"),
         ),
         (
             "max axis jerk",
-            summary::against_limits(max.j.mm(), j_lim, "mm/s³"),
+            summary::against_limits(max.j.mm(), j_lim, j_floor, "mm/s³"),
         ),
     ];
     if let Some(note) = summary::corner_note(machine.corner) {

@@ -3,8 +3,8 @@
 
 use cnc_motion::config::{CornerMode, Machine};
 
-/// Relative excess over a limit that is still rounding (the emitted ticks' finite differences
-/// carry the floating-point error of the positions they difference).
+/// Relative excess over a limit that is still rounding in the feed law's own values (the emitted
+/// ticks' finite differences have their own floor, `Differences::rounding`).
 const ROUNDING: f64 = 1e-9;
 
 /// Decimals that show `scale` with four significant digits (0 from 1000 up, at most 6).
@@ -26,16 +26,18 @@ pub fn per_axis(values: [f64; 3], decimals: usize, unit: &str) -> String {
 }
 
 /// `X 2000 / 2000  Y 1578 / 2000  Z 1950 / 2000 mm/s² (peak / limit)`, rounded to four
-/// significant digits of the largest limit; a peak above its limit by more than rounding is
-/// marked `OVER` (the corner modes that step the acceleration by design show it on the jerk).
-pub fn against_limits(peaks: [f64; 3], limits: [f64; 3], unit: &str) -> String {
+/// significant digits of the largest limit; a peak above its limit by more than rounding (relative,
+/// plus the per-axis `floor` of the finite differences) is marked `OVER` (the corner modes that
+/// step the acceleration by design show it on the jerk).
+pub fn against_limits(peaks: [f64; 3], limits: [f64; 3], floor: [f64; 3], unit: &str) -> String {
     let d = decimals(limits.iter().copied().fold(0.0, f64::max));
     let parts: Vec<String> = peaks
         .iter()
         .zip(limits)
+        .zip(floor)
         .zip(["X", "Y", "Z"])
-        .map(|((peak, limit), axis)| {
-            let over = if *peak > limit * (1.0 + ROUNDING) {
+        .map(|(((peak, limit), floor), axis)| {
+            let over = if *peak > limit * (1.0 + ROUNDING) + floor {
                 " OVER"
             } else {
                 ""
@@ -66,6 +68,7 @@ pub fn corner_note(corner: CornerMode) -> Option<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use cnc_motion::interp::Differences;
 
     #[test]
     fn four_significant_digits_of_the_scale() {
@@ -84,14 +87,20 @@ mod tests {
         let text = against_limits(
             [50_000.000_029_193_36, 50_000.0, 12_345.678],
             [50_000.0; 3],
+            [0.0; 3],
             "mm/s³",
         );
         assert_eq!(
             text,
             "X 50000 / 50000  Y 50000 / 50000  Z 12346 / 50000 mm/s³ (peak / limit)"
         );
-        let over = against_limits([50_100.0, 0.0, 0.0], [50_000.0; 3], "mm/s³");
+        let over = against_limits([50_100.0, 0.0, 0.0], [50_000.0; 3], [0.0; 3], "mm/s³");
         assert!(over.starts_with("X 50100 / 50000 OVER  Y 0 / 50000"), "{over}");
+        // A CAM-like program 62 mm from the origin: its ticks differenced show 5.7e-5 mm/s³
+        // over, within what rounding the positions allows.
+        let floor = Differences::rounding(0.062, 1e-3)[2] / 1e-3;
+        let cam = against_limits([50_000.000_056_948_935; 3], [50_000.0; 3], [floor; 3], "mm/s³");
+        assert!(!cam.contains("OVER"), "{cam}");
     }
 
     #[test]
@@ -101,7 +110,7 @@ mod tests {
             "X 1.000  Y -2.500  Z 0.125 mm"
         );
         assert_eq!(
-            against_limits([83.205, 55.47, 76.63], [100.0, 100.0, 100.0], "mm/s"),
+            against_limits([83.205, 55.47, 76.63], [100.0; 3], [0.0; 3], "mm/s"),
             "X 83.2 / 100.0  Y 55.5 / 100.0  Z 76.6 / 100.0 mm/s (peak / limit)"
         );
     }
