@@ -21,6 +21,8 @@
 //! that a smaller one leaves straight (slower on low-jerk axes: the curve's acceleration and jerk
 //! at its top speed); and a longer transition changes which pieces join a chain and the chain's
 //! limits at its speed (the worst of its pieces').
+//!
+//! `tolerance_failure_rate` (ignored, run by hand) prints the rate and every lengthened case.
 
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
@@ -279,9 +281,12 @@ proptest! {
 
     /// Not yet: a larger tolerance changes the path (more of the short moves fitted as curves,
     /// the chains and their limits; see the module comment), and that still lengthens about 1 in
-    /// 10 of these programs by more than 1e-3 (before the cut was chosen by its time: 1 in 7).
+    /// 7 of these programs by more than 1e-3 (`tolerance_failure_rate`, seeds 1 and 2: 13.7 and
+    /// 13.1 %; 10.6 % on seed 1 before the tight-bend transitions, whose cut over a short span
+    /// between two arcs can join a tighter transition into the second arc's chain and cap it
+    /// there, e.g. two arcs of R 0.16 and 0.26 mm: 0.298 s at P 2.9 µm, 0.333 s at 7.9 µm).
     #[test]
-    #[ignore = "issue 19: not yet monotone in the tolerance (about 1 in 10 random programs)"]
+    #[ignore = "issue 19: not yet monotone in the tolerance (about 1 in 7 random programs)"]
     fn a_larger_tolerance_never_lengthens_a_program(
         steps in prop::collection::vec(a_step(), 1..16),
         feed in 2.5..(15000f64).log10(),
@@ -291,4 +296,36 @@ proptest! {
         let (low, high, why) = low_and_high(&steps, 10f64.powf(feed), &m, Raise::Tolerance, k);
         prop_assert!(high <= low * (1.0 + SLACK), "{}", why);
     }
+}
+/// The rate at which a larger tolerance lengthens a program, over PROPTEST_CASES fresh cases (on
+/// PROPTEST_RNG_SEED): each lengthened case printed with its ratio (run by hand, `--ignored
+/// --nocapture`; the figures of the module comment).
+#[test]
+#[ignore = "a measurement, run by hand"]
+fn tolerance_failure_rate() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let cfg = config();
+    let mut runner = TestRunner::new(cfg.clone());
+    let strategy = (
+        prop::collection::vec(a_step(), 1..16),
+        2.5..(15000f64).log10(),
+        a_machine(),
+        1.01..4.0f64,
+    );
+    let (mut failed, mut worst) = (0usize, 1.0f64);
+    for case in 0..cfg.cases {
+        let (steps, feed, m, k) = strategy.new_tree(&mut runner).expect("a case").current();
+        let (low, high, why) = low_and_high(&steps, 10f64.powf(feed), &m, Raise::Tolerance, k);
+        if high > low * (1.0 + SLACK) {
+            failed += 1;
+            worst = worst.max(high / low);
+            eprintln!("case {case}: ratio {:.5}\n{why}", high / low);
+        }
+    }
+    eprintln!(
+        "lengthened: {failed} of {} ({:.2} %), worst ×{worst:.4}",
+        cfg.cases,
+        100.0 * failed as f64 / cfg.cases as f64
+    );
 }
