@@ -22,7 +22,8 @@
 //! at its top speed); and a longer transition changes which pieces join a chain and the chain's
 //! limits at its speed (the worst of its pieces').
 //!
-//! `tolerance_failure_rate` (ignored, run by hand) prints the rate and every lengthened case.
+//! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
+//! every lengthened case.
 
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
@@ -297,12 +298,11 @@ proptest! {
         prop_assert!(high <= low * (1.0 + SLACK), "{}", why);
     }
 }
-/// The rate at which a larger tolerance lengthens a program, over PROPTEST_CASES fresh cases (on
+/// The rate at which a raised limit (`limit_failure_rate`) or a larger tolerance
+/// (`tolerance_failure_rate`) lengthens a program, over PROPTEST_CASES fresh cases (on
 /// PROPTEST_RNG_SEED): each lengthened case printed with its ratio (run by hand, `--ignored
 /// --nocapture`; the figures of the module comment).
-#[test]
-#[ignore = "a measurement, run by hand"]
-fn tolerance_failure_rate() {
+fn failure_rate(raise: impl Strategy<Value = Raise>) {
     use proptest::strategy::ValueTree;
     use proptest::test_runner::TestRunner;
     let cfg = config();
@@ -311,12 +311,13 @@ fn tolerance_failure_rate() {
         prop::collection::vec(a_step(), 1..16),
         2.5..(15000f64).log10(),
         a_machine(),
+        raise,
         1.01..4.0f64,
     );
     let (mut failed, mut worst) = (0usize, 1.0f64);
     for case in 0..cfg.cases {
-        let (steps, feed, m, k) = strategy.new_tree(&mut runner).expect("a case").current();
-        let (low, high, why) = low_and_high(&steps, 10f64.powf(feed), &m, Raise::Tolerance, k);
+        let (steps, feed, m, raise, k) = strategy.new_tree(&mut runner).expect("a case").current();
+        let (low, high, why) = low_and_high(&steps, 10f64.powf(feed), &m, raise, k);
         if high > low * (1.0 + SLACK) {
             failed += 1;
             worst = worst.max(high / low);
@@ -328,4 +329,16 @@ fn tolerance_failure_rate() {
         cfg.cases,
         100.0 * failed as f64 / cfg.cases as f64
     );
+}
+
+#[test]
+#[ignore = "a measurement, run by hand"]
+fn limit_failure_rate() {
+    failure_rate(a_raise());
+}
+
+#[test]
+#[ignore = "a measurement, run by hand"]
+fn tolerance_failure_rate() {
+    failure_rate(Just(Raise::Tolerance));
 }
