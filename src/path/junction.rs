@@ -192,6 +192,7 @@ impl Search<'_> {
             }
         };
         let (mut best, mut longest): (Option<Found>, f64) = (None, 0.0);
+        let mut stop_tries = 0;
         for _ in 0..MAX_SHRINKS {
             if d.is_nan() || d <= MIN_LENGTH {
                 break;
@@ -209,7 +210,17 @@ impl Search<'_> {
             match &best {
                 None => {
                     if within() {
-                        let v_max = faster_than_a_stop(&h, self.feed, m)?;
+                        // A shorter cut may beat a stop where the longest does not (its time
+                        // grows as √d, a jerk-limited stop's as ∛d): a larger tolerance, which
+                        // admits it too, must not stop where a smaller one runs through.
+                        let Some(v_max) = faster_than_a_stop(&h, self.feed, m) else {
+                            if stop_tries == STOP_TRIES {
+                                return None;
+                            }
+                            stop_tries += 1;
+                            d *= COMPARE_SHRINK;
+                            continue;
+                        };
                         (best, longest) = (Some(found(d, h, v_max, 0)), d);
                         match halvings {
                             Some(0) => break,
@@ -246,6 +257,8 @@ impl Search<'_> {
 const SAVING: f64 = 1e-6;
 /// Step between the cuts compared once one keeps the tolerance.
 const COMPARE_SHRINK: f64 = 0.5;
+/// Halvings of an admitted cut tried where a stop costs less than it, before the corner stops.
+const STOP_TRIES: u32 = 4;
 
 /// A neighbour's own speed (its class: `piece_limits` on curves, the feed and eq. 11 on lines),
 /// the limits and bands it ramps within, and its length.
