@@ -103,7 +103,8 @@ test-python: fmu venv-full system-deps
 FUZZ_CASES ?= 50000
 fuzz:
 	env -u PROPTEST_RNG_SEED $(CARGO) test --workspace --release
-	env -u CNC_FUZZ_SEED CNC_FUZZ_CASES=$(FUZZ_CASES) $(CARGO) test --release --test fuzz -- --nocapture
+	CNC_FUZZ_SEED=$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ') CNC_FUZZ_CASES=$(FUZZ_CASES) \
+		$(CARGO) test --release --test fuzz -- --nocapture
 
 # The FMU benchmark loads target/release/libcnc_motion.so: build the libraries first.
 bench:
