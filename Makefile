@@ -97,12 +97,14 @@ test-rust:
 test-python: fmu venv-full system-deps
 	$(FPY) -m pytest -q tests/python
 
-# Fresh seeds, more cases: every property test with a new random seed (PROPTEST_RNG_SEED unset),
-# then the fuzz harness of tests/fuzz.rs with FUZZ_CASES mutated programs and machine files on a
-# new seed (printed, so a failure can be replayed with CNC_FUZZ_SEED=...).
+# Fresh seeds, more cases: every property test with a new random seed (printed, so a failure can
+# be replayed with PROPTEST_RNG_SEED=...; unset, tests/monotone_props.rs keeps CI's), then the fuzz
+# harness of tests/fuzz.rs with FUZZ_CASES mutated programs and machine files on a new seed
+# (printed, so a failure can be replayed with CNC_FUZZ_SEED=...).
 FUZZ_CASES ?= 50000
 fuzz:
-	env -u PROPTEST_RNG_SEED $(CARGO) test --workspace --release
+	seed=$$(od -An -N4 -tu4 /dev/urandom | tr -d ' '); echo "PROPTEST_RNG_SEED=$$seed"; \
+		PROPTEST_RNG_SEED=$$seed $(CARGO) test --workspace --release
 	CNC_FUZZ_SEED=$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ') CNC_FUZZ_CASES=$(FUZZ_CASES) \
 		$(CARGO) test --release --test fuzz -- --nocapture
 
