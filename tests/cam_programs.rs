@@ -8,6 +8,8 @@
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
 
+mod emitted;
+
 use cnc_motion::config::{AxisLimits, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::feed::{BlockRequest, FeedLaw, Limits, Profile, ProfileKind};
@@ -129,17 +131,13 @@ fn run(program: &Program, m: &Machine) -> Outcome {
         + (end[2] - program.at[2]).powi(2))
     .sqrt();
     assert!(d_end < 1e-12, "end point off by {d_end}");
-    let mut worst_fd = [0.0f64; 3];
-    for i in 0..3 {
-        for k in 3..p.len() {
-            let v = (p[k][i] - p[k - 1][i]) / t;
-            let a = (p[k][i] - 2.0 * p[k - 1][i] + p[k - 2][i]) / (t * t);
-            let j = (p[k][i] - 3.0 * p[k - 1][i] + 3.0 * p[k - 2][i] - p[k - 3][i]) / (t * t * t);
-            worst_fd[0] = worst_fd[0].max(v.abs() / V);
-            worst_fd[1] = worst_fd[1].max(a.abs() / A);
-            worst_fd[2] = worst_fd[2].max(j.abs() / m.axes[i].max_jerk);
-        }
-    }
+    let peak = emitted::peak_differences(&p, t);
+    let limits = [[V; 3], [A; 3], m.axes.map(|a| a.max_jerk)];
+    let worst_fd: [f64; 3] = std::array::from_fn(|order| {
+        (0..3)
+            .map(|i| peak[order][i] / limits[order][i])
+            .fold(0.0, f64::max)
+    });
     for (n, w) in ["velocity", "acceleration", "jerk"].iter().zip(worst_fd) {
         assert!(w <= 1.0 + 1e-6, "finite-difference {n} at {w} × the limit");
     }

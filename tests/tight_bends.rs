@@ -9,6 +9,8 @@
 // Targets other than the library share its dependency list; the lint guards the library.
 #![allow(unused_crate_dependencies)]
 
+mod emitted;
+
 use cnc_motion::config::{AxisLimits, Machine, MM};
 use cnc_motion::engine::Engine;
 use cnc_motion::geometry::{Line, Source};
@@ -83,19 +85,7 @@ fn run(prog: &Program, m: &Machine) -> Vec<[f64; 3]> {
     }
     let end = p[p.len() - 1];
     assert!((0..3).all(|i| (end[i] - prog.at[i]).abs() < 1e-12), "end {end:?}");
-    let j_max = m.axes[0].max_jerk;
-    for i in 0..3 {
-        for k in 3..p.len() {
-            let v = (p[k][i] - p[k - 1][i]) / t;
-            let a = (p[k][i] - 2.0 * p[k - 1][i] + p[k - 2][i]) / (t * t);
-            let j = (p[k][i] - 3.0 * p[k - 1][i] + 3.0 * p[k - 2][i] - p[k - 3][i]) / (t * t * t);
-            assert!(v.abs() <= V * (1.0 + 1e-6), "axis {i} v {v}");
-            assert!(a.abs() <= A * (1.0 + 1e-6), "axis {i} a {a}");
-            // Two second differences are each a mean of the acceleration: their difference over
-            // T is at most 2A/T, the bound that means something at 1e9.
-            assert!(j.abs() <= j_max.min(2.0 * A / t) * (1.0 + 1e-6), "axis {i} j {j}");
-        }
-    }
+    emitted::assert_within(&p, t, V, A, m.axes[0].max_jerk);
     p
 }
 
