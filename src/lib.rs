@@ -32,6 +32,8 @@ pub mod path;
 pub mod plan;
 pub mod servo;
 pub mod si;
+#[cfg(test)]
+mod test_rng;
 pub mod tolerance;
 pub mod valid;
 

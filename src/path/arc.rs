@@ -316,14 +316,7 @@ mod tests {
     use super::*;
     use crate::geometry::{norm, Plane};
     use crate::si::MM;
-
-    /// Deterministic xorshift64* in [0, 1).
-    fn unit(state: &mut u64) -> f64 {
-        *state ^= *state >> 12;
-        *state ^= *state << 25;
-        *state ^= *state >> 27;
-        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_rng;
 
     /// `curve_bands` as it was before its pairs ran in one pass (each pair by three scalar passes
     /// over the cells with `f64::min`, both speed solves always): the reference for bit equality.
@@ -418,26 +411,8 @@ mod tests {
         let mut s = 0x2545_f491_4f6c_dd1du64;
         let mut banded = 0;
         for _ in 0..400 {
-            let mut m = Machine::default();
-            for ax in m.axes.iter_mut() {
-                ax.max_acceleration = 0.5 + 10.0 * unit(&mut s);
-                ax.max_jerk = 5.0 + 200.0 * unit(&mut s);
-            }
-            let n = 1 + (unit(&mut s) * 10.0) as usize;
-            let cells: Vec<[Vec3; 3]> = (0..n)
-                .map(|_| {
-                    std::array::from_fn(|k| {
-                        std::array::from_fn(|_| {
-                            let x = unit(&mut s);
-                            if x < 0.15 {
-                                0.0
-                            } else {
-                                (10f64).powf(2.0 * x - 1.5 + k as f64)
-                            }
-                        })
-                    })
-                })
-                .collect();
+            let m = test_rng::machine(&mut s);
+            let cells = test_rng::cells(&mut s, 10, 2.0, -1.5);
             let k = norm(max_bounds(&cells)[1]);
             let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
             let top = bands_by_scalar_passes(&cells, rho, f64::INFINITY, &m).0.v_max;

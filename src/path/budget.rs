@@ -195,14 +195,7 @@ fn jerk_speed(d3: f64, c: f64, left: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Deterministic xorshift64* in [0, 1).
-    fn unit(state: &mut u64) -> f64 {
-        *state ^= *state >> 12;
-        *state ^= *state << 25;
-        *state ^= *state >> 27;
-        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_rng::{self, unit};
 
     /// The closed-form speed equals the 32-step bisection it replaced (to its 2⁻³² of v0) on 1000
     /// random curves: cells with zero and non-zero bounds, random axis limits and shares.
@@ -211,26 +204,8 @@ mod tests {
         let mut s = 0x9e37_79b9_7f4a_7c15u64;
         let mut lowered = 0;
         for _ in 0..1000 {
-            let mut machine = Machine::default();
-            for ax in machine.axes.iter_mut() {
-                ax.max_acceleration = 0.5 + 10.0 * unit(&mut s);
-                ax.max_jerk = 5.0 + 200.0 * unit(&mut s);
-            }
-            let n = 1 + (unit(&mut s) * 6.0) as usize;
-            let cells: Vec<[Vec3; 3]> = (0..n)
-                .map(|_| {
-                    std::array::from_fn(|k| {
-                        std::array::from_fn(|_| {
-                            let x = unit(&mut s);
-                            if x < 0.15 {
-                                0.0
-                            } else {
-                                (10f64).powf(3.0 * x - 1.0 + k as f64)
-                            }
-                        })
-                    })
-                })
-                .collect();
+            let machine = test_rng::machine(&mut s);
+            let cells = test_rng::cells(&mut s, 6, 3.0, -1.0);
             let tangential = [0.005, 0.05, 0.1, 0.25][(unit(&mut s) * 4.0) as usize];
             let (a_free, j_free) = (1.0 + 5.0 * unit(&mut s), 10.0 + 100.0 * unit(&mut s));
             let budget = Budget {

@@ -361,14 +361,7 @@ mod tests {
     use super::*;
     use crate::feed::bands::{Band, Bands};
     use crate::feed::{Limits, ProfileKind};
-
-    /// Deterministic xorshift64* in [0, 1).
-    fn unit(state: &mut u64) -> f64 {
-        *state ^= *state >> 12;
-        *state ^= *state << 25;
-        *state ^= *state >> 27;
-        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_rng::unit;
 
     /// A rise from a kept forward envelope (`Rise`) is the rise built whole, bit for bit, on 200
     /// random band sets (acceleration and jerk rising and falling with speed) for ramps within a

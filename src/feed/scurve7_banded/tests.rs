@@ -4,6 +4,7 @@
 use super::*;
 use crate::feed::bands::{Band, Bands};
 use crate::feed::{scurve7, BlockRequest, Limits, ProfileKind};
+use crate::test_rng::unit;
 
 fn limits(v_max: f64, a_max: f64, j_max: f64) -> Limits {
     Limits {
@@ -215,14 +216,6 @@ fn planning_questions_invert_the_distance() {
             assert_eq!(x, 0.0);
         }
     }
-}
-
-/// Deterministic xorshift64* in [0, 1).
-fn unit(state: &mut u64) -> f64 {
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
 }
 
 /// Every answer is the crossing of the ramp distance as evaluated, whether scurve7's closed
