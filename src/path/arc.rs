@@ -315,8 +315,8 @@ pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
 mod tests {
     use super::*;
     use crate::geometry::{norm, Plane};
+    use crate::path::testing;
     use crate::si::MM;
-    use crate::test_rng;
 
     /// `curve_bands` as it was before its pairs ran in one pass (each pair by three scalar passes
     /// over the cells with `f64::min`, both speed solves always): the reference for bit equality.
@@ -411,8 +411,8 @@ mod tests {
         let mut s = 0x2545_f491_4f6c_dd1du64;
         let mut banded = 0;
         for _ in 0..400 {
-            let m = test_rng::machine(&mut s);
-            let cells = test_rng::cells(&mut s, 10, 2.0, -1.5);
+            let m = testing::machine(&mut s);
+            let cells = testing::cells(&mut s, 10, 2.0, -1.5);
             let k = norm(max_bounds(&cells)[1]);
             let rho = if k > 0.0 { 1.0 / k } else { f64::INFINITY };
             let top = bands_by_scalar_passes(&cells, rho, f64::INFINITY, &m).0.v_max;

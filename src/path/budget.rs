@@ -195,7 +195,8 @@ fn jerk_speed(d3: f64, c: f64, left: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_rng::{self, unit};
+    use crate::path::testing;
+    use crate::test_rng::unit;
 
     /// The closed-form speed equals the 32-step bisection it replaced (to its 2⁻³² of v0) on 1000
     /// random curves: cells with zero and non-zero bounds, random axis limits and shares.
@@ -204,8 +205,8 @@ mod tests {
         let mut s = 0x9e37_79b9_7f4a_7c15u64;
         let mut lowered = 0;
         for _ in 0..1000 {
-            let machine = test_rng::machine(&mut s);
-            let cells = test_rng::cells(&mut s, 6, 3.0, -1.0);
+            let machine = testing::machine(&mut s);
+            let cells = testing::cells(&mut s, 6, 3.0, -1.0);
             let tangential = [0.005, 0.05, 0.1, 0.25][(unit(&mut s) * 4.0) as usize];
             let (a_free, j_free) = (1.0 + 5.0 * unit(&mut s), 10.0 + 100.0 * unit(&mut s));
             let budget = Budget {

@@ -32,6 +32,8 @@ mod merge;
 mod micro;
 mod smooth;
 mod source_map;
+#[cfg(test)]
+mod testing;
 pub mod tolerance;
 
 pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, Shares};
