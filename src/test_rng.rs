@@ -1,5 +1,5 @@
-//! A deterministic random number for the library's unit tests (a failure replays); it imports nothing,
-//! so any module's tests may use it.
+//! A deterministic random number for the library's unit tests (a failure replays); it imports
+//! nothing, so any module's tests may use it.
 
 /// Deterministic xorshift64* in [0, 1).
 pub fn unit(state: &mut u64) -> f64 {

@@ -14,8 +14,8 @@ pub fn machine(state: &mut u64) -> Machine {
     m
 }
 
-/// 1 … `most` cells of derivative bounds [p′, p″, p‴]: each component 0 with probability 0.15,
-/// else 10^(`decades`·x + `lowest` + k) for the k-th derivative.
+/// 1 … `most` cells of derivative bounds [p′, p″, p‴]: each component 0 with probability
+/// 0.15, else 10^(`decades`·x + `lowest` + k) for the k-th derivative.
 pub fn cells(state: &mut u64, most: usize, decades: f64, lowest: f64) -> Vec<[Vec3; 3]> {
     let n = 1 + (unit(state) * most as f64) as usize;
     (0..n)
