@@ -27,6 +27,7 @@ import pytest
 import toppra
 import toppra.algorithm
 import toppra.constraint
+from repo import families
 from ruckig import InputParameter, Result, Ruckig, Trajectory
 
 V_AXIS = 250.0  # mm/s
@@ -43,22 +44,7 @@ def machine(tmp_path: pathlib.Path, jerk: float) -> str:
     return str(path)
 
 
-# --- the families (mm, mm/min); each program starts where G92 puts it, at rest -----------------
-
-def circle(feed: float) -> str:
-    """A full circle of R 35.9 mm from rest, one G2."""
-    return f"G21 G90 G64 P0.01\nG2 X0 Y0 I35.9 J0 F{feed:g}\nM30\n"
-
-
-def chord_circle(feed: float, chord: float = 0.2, r: float = 20.0) -> str:
-    """A circle of R 20 mm as G1 chords of `chord` mm (4 decimals, as CAM writes them)."""
-    n = round(2 * math.pi * r / chord)
-    lines = ["G21 G90 G64 P0.01", f"G92 X{r:.4f} Y0"]
-    for k in range(1, n + 1):
-        a = 2 * math.pi * k / n
-        lines.append(f"G1 X{r * math.cos(a):.4f} Y{r * math.sin(a):.4f} F{feed:g}")
-    return "\n".join(lines + ["M30"]) + "\n"
-
+# --- the families: tools/linuxcnc_compare/families.py (mm, mm/min; from rest where G92 puts them)
 
 def chord_length(chord: float = 0.2, r: float = 20.0) -> float:
     n = round(2 * math.pi * r / chord)
@@ -66,57 +52,6 @@ def chord_length(chord: float = 0.2, r: float = 20.0) -> float:
            for k in range(n + 1)]
     pts[0] = (r, 0.0)
     return sum(math.dist(p, q) for p, q in zip(pts, pts[1:]))
-
-
-def arc_spiral(feed: float = 15000, n: int = 1000, r0: float = 50.0, r1: float = 0.05,
-               per_turn: int = 50) -> str:
-    """n G2 R arcs, 50 a turn, the radius shrinking linearly from 50 to 0.05 mm; each arc's R the
-    mean of its ends' (nearly tangent arcs, curvature stepping at every joint)."""
-    lines = ["G21 G90 G64 P0.01", f"G92 X{r0:.4f} Y0"]
-    x, y, r, ang = r0, 0.0, r0, 0.0
-    for _ in range(n):
-        r2 = r - (r0 - r1) / n
-        ang -= 2 * math.pi / per_turn
-        nx, ny = r2 * math.cos(ang), r2 * math.sin(ang)
-        rad = max(0.5 * (r + r2), 0.5 * math.hypot(nx - x, ny - y) * 1.0001)
-        lines.append(f"G2 X{nx:.4f} Y{ny:.4f} R{rad:.4f} F{feed:g}")
-        x, y, r = nx, ny, r2
-    return "\n".join(lines + ["M30"]) + "\n"
-
-
-def g1_spiral(feed: float = 6000, r0: float = 0.5, r1: float = 20.0, pitch: float = 2.0,
-              seg: float = 0.2) -> str:
-    """An Archimedean spiral pocket r 0.5 → 20 mm, 2 mm a turn, in G1 moves of about 0.2 mm."""
-    lines = ["G21 G90 G64 P0.01", f"G92 X{r0:.4f} Y0"]
-    th, r, b = 0.0, r0, pitch / (2 * math.pi)
-    while r < r1:
-        th += seg / max(r, 0.1)
-        r = r0 + b * th
-        lines.append(f"G1 X{r * math.cos(th):.4f} Y{r * math.sin(th):.4f} F{feed:g}")
-    return "\n".join(lines + ["M30"]) + "\n"
-
-
-def raster(feed: float = 3000, width: float = 20.0, rows: int = 10, step: float = 0.5,
-           seg: float = 0.2) -> str:
-    """Zig-zag rows over the surface z = 0.5 sin(x/3) cos(y/2) mm, 0.2 mm G1 moves."""
-    lines = ["G21 G90 G64 P0.01"]
-    for k in range(rows):
-        y = k * step
-        xs = [i * seg for i in range(int(width / seg) + 1)]
-        for x in (xs[::-1] if k % 2 else xs):
-            z = 0.5 * math.sin(x / 3.0) * math.cos(y / 2.0)
-            lines.append(f"G1 X{x:.4f} Y{y:.4f} Z{z:.4f} F{feed:g}")
-    return "\n".join(lines + ["M30"]) + "\n"
-
-
-def micro_line(feed: float = 3000, n: int = 2000) -> str:
-    """A straight 9 mm line as 2000 moves alternating 8 µm and 1 µm (pcb2gcode-like)."""
-    lines = ["G21 G90 G64 P0.01"]
-    x = 0.0
-    for i in range(n):
-        x += 0.008 if i % 2 == 0 else 0.001
-        lines.append(f"G1 X{x:.5f} F{feed:g}")
-    return "\n".join(lines + ["M30"]) + "\n"
 
 
 # --- running and bounding -----------------------------------------------------------------------
@@ -163,13 +98,13 @@ def ratio_to_toppra(cli: str, tmp_path: pathlib.Path, text: str, feed_mm_min: fl
 
 
 FAMILIES = {
-    **{f"circle F{f}": (circle(f), f) for f in (6000, 9000, 12000, 15000)},
-    "chord circle F3000": (chord_circle(3000), 3000),
-    "chord circle F10000": (chord_circle(10000), 10000),
-    "spiral of 1000 G2 R arcs": (arc_spiral(), 15000),
-    "G1 spiral pocket": (g1_spiral(), 6000),
-    "raster": (raster(), 3000),
-    "alternating 8/1 µm moves": (micro_line(), 3000),
+    **{f"circle F{f}": (families.circle(f), f) for f in (6000, 9000, 12000, 15000)},
+    "chord circle F3000": (families.chord_circle(3000), 3000),
+    "chord circle F10000": (families.chord_circle(10000), 10000),
+    "spiral of 1000 G2 R arcs": (families.arc_spiral(), 15000),
+    "G1 spiral pocket": (families.g1_spiral(), 6000),
+    "raster": (families.raster(), 3000),
+    "alternating 8/1 µm moves": (families.micro_line(), 3000),
 }
 
 
@@ -181,7 +116,7 @@ def test_within_five_percent_of_toppra(cli: str, tmp_path: pathlib.Path, name: s
 
 @pytest.mark.parametrize("jerk", [5e4, 1e9])
 def test_circle_time_does_not_grow_with_the_feed(cli: str, tmp_path: pathlib.Path, jerk: float) -> None:
-    times = [run(cli, tmp_path, circle(f), jerk)[0] for f in (6000, 9000, 12000, 15000)]
+    times = [run(cli, tmp_path, families.circle(f), jerk)[0] for f in (6000, 9000, 12000, 15000)]
     assert all(b <= a * (1 + 1e-3) for a, b in zip(times, times[1:])), times
 
 
@@ -200,7 +135,7 @@ def ruckig_rest_to_rest(length: float, v_max: float, a_max: float, j_max: float)
 @pytest.mark.parametrize("feed", [3000, 10000])
 def test_chord_circles_within_fifteen_percent_of_ruckig(cli: str, tmp_path: pathlib.Path, feed: float) -> None:
     # The 1-D bound: the programmed length rest to rest at the feed with an axis's a and j.
-    ours = run(cli, tmp_path, chord_circle(feed), 5e4)[0]
+    ours = run(cli, tmp_path, families.chord_circle(feed), 5e4)[0]
     bound = ruckig_rest_to_rest(chord_length(), feed / 60.0, A_AXIS, 5e4)
     print(f"ours {ours:.4f} s, Ruckig 1-D {bound:.4f} s: {ours / bound:.4f}")
     assert ours <= 1.15 * bound

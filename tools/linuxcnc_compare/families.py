@@ -1,5 +1,6 @@
-"""Issue 19's generated program families, as tests/python/test_toppra.py and tests/cam_families.rs
-write them (the same text; this copy needs no numpy or toppra), with a few more feeds.
+"""Issue 19's generated program families, with a few more feeds: the one Python text of them, which
+tests/python/test_toppra.py loads too (tests/cam_families.rs writes the same programs in Rust).
+Plain Python, so that compare.py runs with any python3.
 
 Every program starts with `G21 G90 G64 P0.01` and, where it starts off the origin, a G92 that names
 the machine's start point (machine = program − start), so both controllers run it from rest at
