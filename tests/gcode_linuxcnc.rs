@@ -4,46 +4,11 @@
 //! text implies (hand-computed in the comments), or the located error it names.
 #![allow(unused_crate_dependencies)]
 
+mod reading;
+
 use cnc_motion::config::Machine;
-use cnc_motion::gcode::{validate, Block, Motion, Reader};
-use std::sync::Arc;
-
-fn blocks_with(text: &str, machine: &Machine) -> Result<Vec<Block>, String> {
-    let mut r = Reader::new(Arc::from(text), "t.ngc", [0.0; 3]).with_machine(machine);
-    let mut out = Vec::new();
-    while let Some(b) = r.next_block().map_err(|e| e.to_string())? {
-        out.push(b);
-    }
-    Ok(out)
-}
-
-fn blocks(text: &str) -> Vec<Block> {
-    blocks_with(text, &Machine::default()).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn error(text: &str) -> String {
-    blocks_with(text, &Machine::default()).unwrap_err()
-}
-
-fn end_of(b: &Block) -> Option<[f64; 3]> {
-    match b.motion {
-        Motion::Rapid { to } | Motion::Linear { to } | Motion::Arc { to, .. } => Some(to),
-        _ => None,
-    }
-}
-
-/// End points of the moves, in program units `unit` (1 mm or 25.4 mm), rounded to 1e-9.
-fn ends_in(text: &str, unit: f64) -> Vec<[f64; 3]> {
-    blocks(text)
-        .iter()
-        .filter_map(end_of)
-        .map(|p| p.map(|v| (v * 1e3 / unit * 1e9).round() / 1e9))
-        .collect()
-}
-
-fn ends(text: &str) -> Vec<[f64; 3]> {
-    ends_in(text, 1.0)
-}
+use cnc_motion::gcode::{validate, Motion};
+use reading::{blocks, blocks_with, end_of, ends, ends_in, error};
 
 fn last(text: &str) -> [f64; 3] {
     *ends(text).last().expect("a move")
