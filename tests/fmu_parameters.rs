@@ -353,6 +353,20 @@ fn run_to_end(fmu: &Fmu, c: Component) -> [f64; 3] {
     ["x", "y", "z"].map(|a| 1e3 * fmu.real(c, &format!("{a}.command.position")))
 }
 
+/// Initialize `c`, step it to the end of its program and free it; the end position (mm).
+fn initialized_run(fmu: &Fmu, c: Component) -> [f64; 3] {
+    enter_init(fmu, c);
+    assert_eq!(
+        fmu.call("fmi2ExitInitializationMode", c),
+        OK,
+        "{}",
+        fmu.last_log()
+    );
+    let end = run_to_end(fmu, c);
+    fmu.free(c);
+    end
+}
+
 /// Subroutine files in the FMU as in the CLI (LinuxCNC "O Codes", "Calling Files"):
 /// `programFile` searches its own directory, an inline `program` only the machine file's
 /// `subroutine_path`, which is relative to the machine file (resolved like `machineFile`).
@@ -374,19 +388,11 @@ fn subroutine_files_from_program_file_and_machine_file() {
         set(&fmu, c, "programFile", &Value::String("progs/main.ngc".into())),
         OK
     );
-    enter_init(&fmu, c);
-    assert_eq!(
-        fmu.call("fmi2ExitInitializationMode", c),
-        OK,
-        "{}",
-        fmu.last_log()
-    );
-    let end = run_to_end(&fmu, c);
+    let end = initialized_run(&fmu, c);
     assert!(
         (end[0] - 4.0).abs() < 1e-9 && (end[1] - 1.0).abs() < 1e-9,
         "{end:?}"
     );
-    fmu.free(c);
     let c = fmu.instantiate_in("far", &dir);
     let program = Value::String("G21 F3000\no<far> call\nM2\n".into());
     assert_eq!(set(&fmu, c, "program", &program), OK);
@@ -394,19 +400,11 @@ fn subroutine_files_from_program_file_and_machine_file() {
         set(&fmu, c, "machineFile", &Value::String("cfg/m.toml".into())),
         OK
     );
-    enter_init(&fmu, c);
-    assert_eq!(
-        fmu.call("fmi2ExitInitializationMode", c),
-        OK,
-        "{}",
-        fmu.last_log()
-    );
-    let end = run_to_end(&fmu, c);
+    let end = initialized_run(&fmu, c);
     assert!(
         (end[0] - 2.0).abs() < 1e-9 && (end[1] - 3.0).abs() < 1e-9,
         "{end:?}"
     );
-    fmu.free(c);
     // Without the machine file the inline program has nowhere to look.
     let c = fmu.instantiate_in("none", &dir);
     assert_eq!(set(&fmu, c, "program", &program), OK);
