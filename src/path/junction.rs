@@ -1,9 +1,10 @@
 //! Stage 2 of the `smooth` corner mode (smooth.rs): the transition at a junction of two pieces
 //! that do not meet with equal first and second derivatives — a quintic Hermite (hermite.rs;
 //! eq. 45–52 between two lines) from a cut d on each side, d from eq. 52's apex at the tolerance,
-//! shrunk until the transition keeps the tolerance, then halved while that costs less time at the
-//! corner (`local_cost`), or None (a stop at the corner). The tolerance only admits cuts; the time
-//! picks among them, so a larger tolerance does not pick a slower one.
+//! shrunk along a grid of cuts until the transition keeps the tolerance, then halved while that
+//! costs less time at the corner (`local_cost`) and refined about the best, or None (a stop at the
+//! corner, where that costs less). The tolerance only admits cuts (the grid hangs from the
+//! geometry); the time picks among them, so a larger tolerance seldom picks a slower one.
 
 use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
 use super::hermite::{Hermite, BOUND_PIECES};
@@ -15,9 +16,8 @@ use crate::feed::bands::{Banded, Bands};
 use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
 use crate::geometry::{dot, norm, sub, unit};
 
-/// Shrinks of a transition's cut (by `SHRINK` each) before the junction stops instead.
+/// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
-const SHRINK: f64 = 0.85;
 /// Samples of a transition checked against the programmed geometry.
 const DEVIATION_SAMPLES: usize = 64;
 
@@ -80,10 +80,21 @@ pub(super) fn transition(
     );
     let feed = held.last.feed.min(next.first.feed);
     let mut sides = [side(held, held.last.feed, m), side(next, next.first.feed, m)];
+    // The span before runs no faster at the corner than it reaches from its start.
+    if let Some(entry) = held.entry.filter(|&v| v < sides[0].v) {
+        let banded = Banded {
+            kind: ProfileKind::Scurve7,
+            top: &sides[0].top,
+            bands: &sides[0].bands,
+        };
+        let v_reach = scurve7_banded::max_speed(&banded, held.piece.length(), entry);
+        sides[0].v = sides[0].v.min(v_reach);
+    }
     joined_sides(&mut sides);
     let search = Search {
         held,
         next,
+        reach,
         sides: &sides,
         feed,
         lines,
@@ -114,12 +125,19 @@ pub(super) fn transition(
         // A shorter λ deviates more at the same cut: its longest admissible cut is no longer than
         // the last share's, where the search starts (fewer tolerance checks).
         let start = apex_cut.min(reach).min(longest);
-        if let Some((found, admitted)) = search.cuts(start, share, None) {
+        if let Some((found, admitted)) = search.cuts(start, share) {
             longest = admitted;
             if best.as_ref().is_none_or(|b| found.cost < b.cost - SAVING) {
                 best = Some(found);
             }
         }
+    }
+    // A stop is the shortest cut of all (every tolerance admits it): taken where it costs less.
+    if best
+        .as_ref()
+        .is_some_and(|b| local_cost(0.0, 0.0, 0.0, &sides) < b.cost - SAVING)
+    {
+        return None;
     }
     best.map(|b| (b.d, b.d, b.h, own_limits(&b.h, feed, m)))
 }
@@ -138,8 +156,8 @@ struct Found {
     h: Hermite,
     v: f64,
     share: f64,
-    /// Halvings of the longest admitted cut.
-    halvings: u32,
+    /// Its index on the junction's grid of cuts.
+    k: i32,
 }
 
 /// Shares of 2d tried as the transition's parameter length λ (cut d on both sides, |p'| = 1 at
@@ -162,6 +180,8 @@ pub(super) fn apex_share(share: f64) -> f64 {
 struct Search<'a> {
     held: &'a Span,
     next: &'a Span,
+    /// The longest cut (the top of the grid of cuts).
+    reach: f64,
     sides: &'a [Side; 2],
     feed: f64,
     lines: bool,
@@ -169,94 +189,129 @@ struct Search<'a> {
 }
 
 impl Search<'_> {
-    /// The cut for λ = 2·share·d, from `d`: the longest within the tolerance first, then halves
-    /// of it while they cost less (a longer transition is faster through the corner but replaces
-    /// more of a faster neighbour), so a larger tolerance, which admits every cut a smaller one
-    /// did, does not keep a costlier one among those it compares; with `halvings`, that many
-    /// halves of the longest only. None: a stop costs less; else the cut chosen and the longest
-    /// admitted.
-    fn cuts(&self, mut d: f64, share: f64, halvings: Option<u32>) -> Option<(Found, f64)> {
-        let (held, next, m) = (self.held, self.next, self.m);
-        let found = |d: f64, h: Hermite, v_max: f64, halvings: u32| {
-            // Faster than the slower neighbour, it runs at that one's speed (in its chain, or
-            // with no room to ramp between): its time at the slowest of the three.
-            let v = v_max.min(self.sides[0].v).min(self.sides[1].v);
-            let cost = local_cost(d, h.length(), v, self.sides);
-            Found {
-                cost,
-                d,
-                h,
-                v: v_max,
-                share,
-                halvings,
-            }
+    /// The cut at index `k` (`first`: the grid index of the first grid cut at or below the
+    /// start of the search, and that start; an index below it stands for the start itself) and
+    /// its curve for λ = 2·share·d, if longer than `MIN_LENGTH`.
+    fn at(&self, k: i32, first: (i32, f64), share: f64) -> Option<(f64, Hermite)> {
+        let d = if k < first.0 {
+            first.1
+        } else {
+            self.reach * GRID.powi(k)
         };
-        let (mut best, mut longest): (Option<Found>, f64) = (None, 0.0);
+        if d.is_nan() || d <= MIN_LENGTH {
+            return None;
+        }
+        let a = jet_at(&self.held.piece, self.held.piece.length() - d);
+        let b = jet_at(&self.next.piece, d);
+        // Parameter speed 1 at both ends: λ is 2·share times the cut.
+        Some((d, Hermite::new(a, b, 2.0 * share * d)))
+    }
+
+    fn within(&self, d: f64, h: &Hermite) -> bool {
+        self.lines || {
+            let (before, after) = (self.held.moves_at_end(d), self.next.moves_at_start(d));
+            within_tolerance(h, before, after)
+        }
+    }
+
+    /// Its time at the corner: faster than the slower neighbour, it runs at that one's speed
+    /// (in its chain, or with no room to ramp between), so at the slowest of the three.
+    fn found(&self, k: i32, d: f64, h: Hermite, v_max: f64, share: f64) -> Found {
+        let v = v_max.min(self.sides[0].v).min(self.sides[1].v);
+        Found {
+            cost: local_cost(d, h.length(), v, self.sides),
+            d,
+            h,
+            v: v_max,
+            share,
+            k,
+        }
+    }
+
+    /// The cut for λ = 2·share·d, from `start` and the grid's cuts below it: the longest within
+    /// the tolerance that beats a stop, then the grid's shorter cuts by halves while they cost
+    /// less (a longer transition is faster through the corner but replaces more of a faster
+    /// neighbour), then a quarter and an eighth of the octave about the best. The grid hangs
+    /// from the junction's reach, not from the tolerance: a larger tolerance admits every cut a
+    /// smaller one did and compares them too. None: a stop costs less; else the cut chosen and
+    /// the longest admitted.
+    fn cuts(&self, start: f64, share: f64) -> Option<(Found, f64)> {
+        let m = self.m;
+        // The first grid cut at or below `start` (the rounding of the log checked).
+        let mut k = if start >= self.reach {
+            0
+        } else {
+            ((start / self.reach).ln() / GRID.ln())
+                .ceil()
+                .min(MAX_GRID as f64) as i32
+        };
+        if self.reach * GRID.powi(k) > start {
+            k += 1;
+        }
+        // The start first (the apex cut at the tolerance, or the reach), then the grid below it.
+        let first = (k, start);
+        if self.reach * GRID.powi(k) < start {
+            k -= 1;
+        }
+        let mut best = None;
         let mut stop_tries = 0;
         for _ in 0..MAX_SHRINKS {
-            if d.is_nan() || d <= MIN_LENGTH {
-                break;
+            let (d, h) = self.at(k, first, share)?;
+            if !self.within(d, &h) {
+                k += 1;
+                continue;
             }
-            let a = jet_at(&held.piece, held.piece.length() - d);
-            let b = jet_at(&next.piece, d);
-            // Parameter speed 1 at both ends: λ is 2·share times the cut.
-            let h = Hermite::new(a, b, 2.0 * share * d);
-            let within = || {
-                self.lines || {
-                    let (before, after) = (held.moves_at_end(d), next.moves_at_start(d));
-                    within_tolerance(&h, before, after)
+            // A shorter cut may beat a stop where the longest does not (its time grows as √d, a
+            // jerk-limited stop's as ∛d): a larger tolerance, which admits it too, must not stop
+            // where a smaller one runs through.
+            match faster_than_a_stop(&h, self.feed, m) {
+                Some(v_max) => {
+                    best = Some(self.found(k, d, h, v_max, share));
+                    break;
                 }
-            };
-            match &best {
+                None if stop_tries == STOP_TRIES => return None,
                 None => {
-                    if within() {
-                        // A shorter cut may beat a stop where the longest does not (its time
-                        // grows as √d, a jerk-limited stop's as ∛d): a larger tolerance, which
-                        // admits it too, must not stop where a smaller one runs through.
-                        let Some(v_max) = faster_than_a_stop(&h, self.feed, m) else {
-                            if stop_tries == STOP_TRIES {
-                                return None;
-                            }
-                            stop_tries += 1;
-                            d *= COMPARE_SHRINK;
-                            continue;
-                        };
-                        (best, longest) = (Some(found(d, h, v_max, 0)), d);
-                        match halvings {
-                            Some(0) => break,
-                            Some(k) => d *= COMPARE_SHRINK.powi(k as i32),
-                            None => d *= COMPARE_SHRINK,
-                        }
-                    } else {
-                        d *= SHRINK;
-                    }
-                }
-                Some(b) => {
-                    let k = b.halvings + 1;
-                    let shorter = found(d, h, own_speed(&h, self.feed, m), halvings.unwrap_or(k));
-                    if halvings.is_some() {
-                        if within() {
-                            best = Some(shorter);
-                        }
-                        break;
-                    }
-                    if shorter.cost >= b.cost - SAVING || !within() {
-                        break;
-                    }
-                    best = Some(shorter);
-                    d *= COMPARE_SHRINK;
+                    stop_tries += 1;
+                    k += OCTAVE;
                 }
             }
         }
-        best.map(|b| (b, longest))
+        let mut best = best?;
+        let (admitted, longest) = (best.k, best.d);
+        // The cut at index k, and whether it is within the tolerance and cheaper than `best` by
+        // `SAVING`.
+        let try_at = |k: i32, best: &Found| {
+            let (d, h) = self.at(k, first, share)?;
+            let shorter = self.found(k, d, h, own_speed(&h, self.feed, m), share);
+            let better = shorter.cost < best.cost - SAVING && self.within(d, &shorter.h);
+            Some((shorter, better))
+        };
+        // Down by halves while cheaper.
+        while let Some((shorter, true)) = try_at(best.k + OCTAVE, &best) {
+            best = shorter;
+        }
+        // Then a quarter and an eighth of the octave about the best.
+        for step in [OCTAVE / 2, OCTAVE / 4] {
+            let around = [best.k - step, best.k + step];
+            for k in around.into_iter().filter(|&k| k >= admitted) {
+                if let Some((b, true)) = try_at(k, &best) {
+                    best = b;
+                }
+            }
+        }
+        Some((best, longest))
     }
 }
+
+/// Ratio between neighbouring cuts of a junction's grid (2^(-1/4): `OCTAVE` steps halve the
+/// cut), and the grid's last index.
+const GRID: f64 = 0.840_896_415_253_714_5;
+const OCTAVE: i32 = 4;
+const MAX_GRID: i32 = 400;
 
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
 /// costs keep the longer cut).
 const SAVING: f64 = 1e-6;
-/// Step between the cuts compared once one keeps the tolerance.
-const COMPARE_SHRINK: f64 = 0.5;
 /// Halvings of an admitted cut tried where a stop costs less than it, before the corner stops.
 const STOP_TRIES: u32 = 4;
 

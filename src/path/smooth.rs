@@ -67,6 +67,10 @@ pub(super) struct Span {
     /// cache, recomputed after a restore).
     #[serde(skip)]
     pub(super) own: Option<CurveLimits>,
+    /// Bound on its speed where it begins: 0 after a stop (or at the start), the top speed of
+    /// the transition before it, None where it joins its predecessor (junction.rs bounds its
+    /// speed at the corner after it by what it can reach from there).
+    pub(super) entry: Option<f64>,
 }
 
 impl Span {
@@ -78,6 +82,7 @@ impl Span {
             marks: Vec::new(),
             moves: vec![mv],
             own: None,
+            entry: Some(0.0),
         }
     }
 
@@ -100,6 +105,7 @@ impl Span {
             marks: source_map::span_marks(moves),
             moves: moves.to_vec(),
             own: None,
+            entry: Some(0.0),
         }
     }
 
@@ -236,6 +242,7 @@ impl SmoothBuilder {
         let joined = norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS;
         if joined {
             self.piece(held.piece, &held.marks, held.last.feed, false, held.own, m, out);
+            next.entry = None;
             self.held = Some(next);
             return;
         }
@@ -252,6 +259,7 @@ impl SmoothBuilder {
                 let own = held.own.take();
                 self.piece(held.piece, &held.marks, held.last.feed, false, own, m, out);
                 let feed = held.last.feed.min(next.first.feed);
+                next.entry = Some(limits.class);
                 let piece = Piece::whole(Curve::Hermite(h), line);
                 self.piece(piece, &marks, feed, false, Some(limits), m, out);
                 self.held = Some(next);
