@@ -90,6 +90,23 @@ fn valid_limits(lim: &Limits) -> bool {
     lim.a_max.is_finite() && lim.j_max.is_finite() && lim.a_max > 0.0 && lim.j_max > 0.0
 }
 
+/// Time and distance of the fastest rise from v toward `top` (a = 0 at both ends), up to `top`
+/// or as far as `length` takes it (`max_rise`), whichever comes first.
+pub fn rise_within(v: f64, top: f64, length: f64, lim: &Limits) -> (f64, f64) {
+    if !valid_limits(lim) || top <= v {
+        return (0.0, 0.0);
+    }
+    let v = v.max(0.0);
+    let full = ramp_distance(v, top, lim);
+    let (end, x) = if full <= length {
+        (top, full)
+    } else {
+        let end = v + max_rise(length, v, lim);
+        (end, ramp_distance(v, end, lim))
+    };
+    (ramp_time(end - v, lim.a_max, lim.j_max), x)
+}
+
 /// Largest speed change x ≥ 0 from base speed v (up or down to v) with d(v, v + x) ≤ length.
 /// d is increasing in x, so this is the one root of d(v, v + x) = length.
 pub(super) fn max_rise(length: f64, v: f64, lim: &Limits) -> f64 {
@@ -452,6 +469,47 @@ impl FeedLaw for Scurve7 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `rise_within` is the banded law's rise without bands (an independent evaluation: its
+    /// pieces summed, its exit by regula falsi): the same time and distance to the top where the
+    /// length reaches it; else the whole length, in a time within the bisection's bracket.
+    #[test]
+    fn rise_within_matches_the_banded_rise() {
+        use crate::feed::bands::{Banded, Bands};
+        use crate::feed::{scurve7_banded, ProfileKind};
+        let lim = Limits {
+            v_max: 1.0,
+            a_max: 2.0,
+            j_max: 60.0,
+            snap_max: 0.0,
+        };
+        let bands = Bands::default();
+        let banded = Banded {
+            kind: ProfileKind::Scurve7,
+            top: &lim,
+            bands: &bands,
+        };
+        for i in 0..20 {
+            let v = 0.5 * i as f64 / 20.0;
+            let rise = scurve7_banded::Rise::from(&banded, v);
+            for top in [v + 1e-3, v + 0.05, v + 0.3, v + 0.9] {
+                let (t_top, x_top) = rise.time_distance(top);
+                for length in [1e-6, 1e-4, 1e-2, 0.5 * x_top, x_top, 2.0 * x_top] {
+                    let (t, x) = rise_within(v, top, length, &lim);
+                    if x_top <= length {
+                        assert!((t - t_top).abs() <= 1e-12 * t_top.max(1.0), "{v} {top} {length}");
+                        assert!((x - x_top).abs() <= 1e-12 * x_top.max(1e-3), "{v} {top} {length}");
+                    } else {
+                        // The closed form to its rounding where the rise is tiny next to v.
+                        assert!((x - length).abs() <= 1e-6 * length, "{v} {top} {length}: {x}");
+                        let w = v + bisect(0.0, top - v, |dv| rise.time_distance(v + dv).1 <= length);
+                        let t_w = rise.time_distance(w).0;
+                        assert!((t - t_w).abs() <= 1e-6 * t_w, "{v} {top} {length}: {t} {t_w}");
+                    }
+                }
+            }
+        }
+    }
 
     /// The closed-form slow-down exit equals the bounded bisection it replaced, in both branches
     /// (a stop fits / does not) and both ramp regimes (with and without plateau).

@@ -377,7 +377,11 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
     for s in sides {
         let v_side = s.v.max(f64::MIN_POSITIVE);
         cost -= d / v_side;
-        if v < v_side {
+        if v < v_side && s.bands.levels().is_empty() {
+            // One band: scurve7's closed forms.
+            let (t, x) = scurve7::rise_within(v.max(0.0), v_side, (s.length - d).max(0.0), &s.top);
+            cost += t - x / v_side;
+        } else if v < v_side {
             let banded = Banded {
                 kind: ProfileKind::Scurve7,
                 top: &s.top,
