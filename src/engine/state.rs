@@ -17,7 +17,7 @@ use crate::valid::{at_most, within};
 // 10: speed bands on path blocks and the banded S-curve profile; 11: a window segment's stop
 // limit NaN until needed; 12: the reader's subroutine files (a source on every place), the
 // centre of a held G41/G42 entry arc; 13: a smooth span keeps the moves it stands for; 14: and
-// the bound on its speed where it begins.
+// the bound on its speed where it begins, and the planner's pass-through entry limits.
 const STATE_VERSION: u32 = 14;
 
 /// Fields whose numbers may be more than finite and moderate (see `valid::numbers`): the
@@ -25,6 +25,7 @@ const STATE_VERSION: u32 = 14;
 const WIDER: &[(&str, Wider)] = &[
     ("junction_prev", Wider::Marker),
     ("v_in_lim", Wider::Marker),
+    ("v_in_pass", Wider::Marker),
     ("v_in_stop", Wider::Marker),
     ("Hermite.c", Wider::Finite),
 ];
