@@ -449,20 +449,25 @@ pub(super) fn joined_loss(
     let loss = chain_loss + (l_fast / v_slow - duration).max(0.0);
     let from_rest = scurve7_banded::Rise::from(&banded, 0.0);
     let t = |v: f64| from_rest.time_distance(v).0;
-    let apart = t(v_slow) + scurve7_banded::ramp_time(&banded, v_slow, v_peak) - t(v_peak);
+    let t_slow = t(v_slow);
+    let apart = t_slow + scurve7_banded::ramp_time(&banded, v_slow, v_peak) - t(v_peak);
     if loss > apart {
         return None;
     }
     // Joined, the chain's limits are the worst of its pieces': where the slower side's are
-    // clearly tighter, a ramp through the chain (from rest, as `apart` counts it) takes longer.
+    // clearly tighter, a ramp through the chain (from rest, as `apart` counts it) takes longer
+    // (the same limits and bands ramp alike).
+    if slow == fast {
+        return Some(loss);
+    }
     let slow = Banded {
         kind: ProfileKind::Scurve7,
         top: slow.0,
         bands: slow.1,
     };
     let slow_ramp = scurve7_banded::Rise::from(&slow, 0.0).time_distance(v_slow).0;
-    let slower_ramp = if slow_ramp > TIGHTER_RAMP * t(v_slow) {
-        slow_ramp - t(v_slow)
+    let slower_ramp = if slow_ramp > TIGHTER_RAMP * t_slow {
+        slow_ramp - t_slow
     } else {
         0.0
     };

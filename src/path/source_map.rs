@@ -65,9 +65,16 @@ pub(super) fn transition_marks(
     let (mut at, mut own) = (0, moves[0].line);
     for k in 0..=SAMPLES {
         let p = h.point(step * k as f64);
-        let d: Vec<f64> = moves[at..].iter().map(|mv| mv.source.distance(p)).collect();
-        let j = (0..d.len()).fold(0, |j, i| if d[i] < d[j] { i } else { j });
-        if j > 0 && (holds(moves[at + j], d[j]) || !holds(moves[at], d[0])) {
+        // The nearest move from `at` on (the first of equals), and the distance to `at`'s.
+        let d0 = moves[at].source.distance(p);
+        let (mut j, mut dj) = (0, d0);
+        for (i, mv) in moves[at + 1..].iter().enumerate() {
+            let d = mv.source.distance(p);
+            if d < dj {
+                (j, dj) = (i + 1, d);
+            }
+        }
+        if j > 0 && (holds(moves[at + j], dj) || !holds(moves[at], d0)) {
             at += j;
             if k > 0 {
                 marks.push((step * (k as f64 - 0.5), moves[at].line));
