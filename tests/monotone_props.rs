@@ -350,3 +350,40 @@ fn limit_failure_rate() {
 fn tolerance_failure_rate() {
     failure_rate(Just(Raise::Tolerance));
 }
+
+/// A case `tolerance_failure_rate` found (seed 2): at 3.65 times the tolerance the fit took a
+/// 2.46 mm line and the 6 µm hook after it as one curve, whose top speed is the hook's, 11 mm/s
+/// over the whole line (the line alone runs at 109 mm/s): 1.816 s against 1.600 s. A curve surely
+/// slower than its moves run from rest to rest is not kept (path/fit.rs, `slower_than_stops`).
+#[test]
+fn a_larger_tolerance_does_not_fit_a_long_line_and_a_hook_as_one_slow_curve() {
+    let machine = |tolerance: f64| {
+        let text = format!(
+            "max_feed_mm_min = 60000\npath_tolerance_mm = {tolerance}\n\
+             [axis.x]\nmax_velocity_mm_min = 6323.97\nmax_acceleration_mm_s2 = 2276.54\nmax_jerk_mm_s3 = 4874712.9\n\
+             [axis.y]\nmax_velocity_mm_min = 12570.66\nmax_acceleration_mm_s2 = 3050.28\nmax_jerk_mm_s3 = 384783402.3\n\
+             [axis.z]\nmax_velocity_mm_min = 2746.16\nmax_acceleration_mm_s2 = 518.16\nmax_jerk_mm_s3 = 1219.05\n"
+        );
+        Machine::from_toml(&text, "m.toml").expect("a valid machine")
+    };
+    let program = "G21 G90 G17 G64 F7663.7
+G2 X-0.0369 Y-0.1660 Z0.0000 I0.0000 J-0.0871
+G2 X0.2310 Y0.0461 Z0.0000 I0.0884 J0.1636
+G3 X0.2228 Y0.0486 Z0.0000 I-0.0078 J-0.0110
+G2 X-8.7309 Y26.9308 Z0.0000 I1.9147 J15.5699
+G2 X-1.2447 Y18.1740 Z-5.5482 I5.1668 J-3.1612
+G2 X-1.8202 Y18.1241 Z-5.3754 I-0.3666 J0.8844
+G1 X-1.8888 Y18.0545 Z-5.3979
+G1 X-1.7433 Y18.1162 Z-5.3522
+G1 X0.6270 Y18.7605 Z-5.4563
+G1 X0.6327 Y18.7606 Z-5.4566
+G1 X0.6348 Y18.7606 Z-5.4570
+G2 X0.7215 Y18.6502 Z-5.4570 I0.0008 J-0.0886
+G3 X0.7719 Y18.6516 Z-5.4570 I0.0254 J-0.0079
+G2 X1.3692 Y18.7338 Z-5.4570 I0.3193 J-0.1089
+M30
+";
+    let low = time(program, &machine(0.0741));
+    let high = time(program, &machine(0.2706));
+    assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
+}
