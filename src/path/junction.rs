@@ -377,19 +377,20 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
     for s in sides {
         let v_side = s.v.max(f64::MIN_POSITIVE);
         cost -= d / v_side;
-        if v < v_side && s.bands.levels().is_empty() {
-            // One band: scurve7's closed forms.
-            let (t, x) = scurve7::rise_within(v.max(0.0), v_side, (s.length - d).max(0.0), &s.top);
-            cost += t - x / v_side;
-        } else if v < v_side {
-            let banded = Banded {
-                kind: ProfileKind::Scurve7,
-                top: &s.top,
-                bands: &s.bands,
+        if v < v_side {
+            let (v0, rest) = (v.max(0.0), (s.length - d).max(0.0));
+            let (t, x) = if s.bands.levels().is_empty() {
+                // One band: scurve7's closed forms.
+                scurve7::rise_within(v0, v_side, rest, &s.top)
+            } else {
+                let banded = Banded {
+                    kind: ProfileKind::Scurve7,
+                    top: &s.top,
+                    bands: &s.bands,
+                };
+                // Every ramp here rises from v (one forward envelope).
+                ramp_within(&scurve7_banded::Rise::from(&banded, v0), v_side, rest)
             };
-            // Every ramp here rises from v (one forward envelope).
-            let rise = scurve7_banded::Rise::from(&banded, v.max(0.0));
-            let (t, x) = ramp_within(&rise, v_side, (s.length - d).max(0.0));
             cost += t - x / v_side;
         }
     }
