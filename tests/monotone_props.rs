@@ -388,3 +388,34 @@ M30
     let high = time(program, &machine(0.2706));
     assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
 }
+
+/// A case `tolerance_failure_rate` found (seed 3): at 3.12 times the tolerance the fit took the
+/// 4 µm line between two nearly straight corners as a curve of its own, bent by the curvature of
+/// the circles through its neighbours, slower than the transitions at its two corners: 0.665 s
+/// against 0.644 s. A curve over one line that runs slower than its corners' transitions is not
+/// kept (path/fit.rs, `slower_than_corners`).
+#[test]
+fn a_larger_tolerance_does_not_bend_a_short_line_slower_than_its_corners() {
+    let machine = |tolerance: f64| {
+        let text = format!(
+            "max_feed_mm_min = 60000\npath_tolerance_mm = {tolerance}\n\
+             [axis.x]\nmax_velocity_mm_min = 1978.57\nmax_acceleration_mm_s2 = 3162.15\nmax_jerk_mm_s3 = 2881.25\n\
+             [axis.y]\nmax_velocity_mm_min = 1790.74\nmax_acceleration_mm_s2 = 1921.02\nmax_jerk_mm_s3 = 232963114.07\n\
+             [axis.z]\nmax_velocity_mm_min = 11607.73\nmax_acceleration_mm_s2 = 338.19\nmax_jerk_mm_s3 = 11086.26\n"
+        );
+        Machine::from_toml(&text, "m.toml").expect("a valid machine")
+    };
+    let program = "G21 G90 G17 G64 F1548.8
+G3 X0.4249 Y0.7754 Z0.0000 I0.0000 J0.5041
+G1 X0.4225 Y0.7792 Z-0.0004
+G1 X0.4191 Y0.7835 Z0.0005
+G1 X0.4144 Y0.7935 Z0.0003
+G1 X-0.8744 Y3.5155 Z-0.3989
+G2 X-0.8648 Y3.5186 Z-0.3965 I0.0046 J0.0022
+G1 X-0.8642 Y3.5153 Z-0.3960
+M30
+";
+    let low = time(program, &machine(0.0010108));
+    let high = time(program, &machine(0.0031508));
+    assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
+}

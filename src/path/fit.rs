@@ -3,8 +3,9 @@
 //! those of the circle through it and its neighbouring knots (a compressor in the manner of the
 //! 840D's COMPCURV, but interpolating the programmed points). A span is kept only if its Bézier
 //! control points — hence the whole span — lie within `SPAN_SHARE` of the tolerance of its
-//! programmed chords and it is not surely slower than its moves (`slower_than_stops`); otherwise
-//! it is split at a vertex, down to the programmed line.
+//! programmed chords and it is not surely slower than its moves (`slower_than_stops`) nor, over a
+//! single line, slower than the transitions at its corners would be (`slower_than_corners`);
+//! otherwise it is split at a vertex, down to the programmed line.
 //!
 //! Moves that continue one line (`continues`: a G64 Q line split at its merged vertices for the
 //! blocks it reports, CAM output that splits a straight cut) are one line here: their inner
@@ -13,6 +14,7 @@
 
 use super::chain::{piece_limits, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
+use super::junction::corner_speed;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span};
 use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
 use super::PathBlock;
@@ -232,7 +234,9 @@ impl SmoothBuilder {
             piece_limits(&cells, first.feed / h.speed_bound().max(1.0), m)
         });
         // Kept unless it is surely slower than the moves it replaces.
-        let keep = |own: &CurveLimits| !slower_than_stops(h.length(), own.class, moves, m);
+        let keep = |own: &CurveLimits| {
+            !slower_than_stops(h.length(), own.class, moves, m) && !slower_than_corners(span, own.class, m)
+        };
         if let Some(own) = fitted.filter(keep) {
             let mut span = Span::fitted(Piece::whole(Curve::Hermite(h), first.line), moves);
             span.own = Some(own);
@@ -246,6 +250,21 @@ impl SmoothBuilder {
             self.fit(Fit { from: mid, ..span }, jm, b, m, out);
         }
     }
+}
+
+/// Whether a curve over one programmed line runs slower than the transitions at both of its
+/// ends would: where it bends more than they do, the line runs faster between its corners.
+fn slower_than_corners(span: Fit, class: f64, m: &Machine) -> bool {
+    if span.to - span.from != 1 {
+        return false;
+    }
+    // The corners at the line's ends within the run (a run's end is the neighbour's corner).
+    let lo = span.from.saturating_sub(1);
+    let hi = (span.to + 1).min(span.run.len());
+    let mut corners = span.run[lo..hi].windows(2).peekable();
+    corners.peek().is_some()
+        && corners
+            .all(|w| class < corner_speed(&line_of(&w[0]), &line_of(&w[1]), w[1].tolerance, w[1].feed, m))
 }
 
 /// Whether a curve of `length` and top speed `class` is surely slower than `moves`: its time at

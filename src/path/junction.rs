@@ -7,14 +7,14 @@
 //! geometry); the time picks among them, so a larger tolerance seldom picks a slower one.
 
 use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
-use super::hermite::{Hermite, BOUND_PIECES};
+use super::hermite::{Hermite, Jet, BOUND_PIECES};
 use super::smooth::{jet_at, joined_loss, Move, Span};
 use super::tolerance::{MIN_LENGTH, RAMP_FIT, RAMP_STEPS, REVERSAL_COS};
 use super::{constant_speed_limit, line_limits, slowest_axis};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
 use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
-use crate::geometry::{dot, norm, sub, unit};
+use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -52,6 +52,38 @@ fn own_speed(h: &Hermite, feed: f64, m: &Machine) -> f64 {
     let mut cells = Vec::with_capacity(BOUND_PIECES);
     h.cells(|c| cells.push(c));
     piece_speed(&cells, feed / h.speed_bound().max(1.0), m)
+}
+
+/// The top speed of the transition the junction search starts from at a corner between two
+/// programmed lines `before` and `after` (cut at the apex at `tol`, at most half the shorter line,
+/// λ = 2d): what a fit replacing a line between two such corners is compared with (fit.rs).
+pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: &Machine) -> f64 {
+    let (t_in, t_out) = (before.direction(), after.direction());
+    let w = norm(sub(t_out, t_in));
+    if dot(t_in, t_out) < REVERSAL_COS {
+        return 0.0;
+    }
+    let reach = 0.5 * before.length().min(after.length());
+    let d = if w > 0.0 {
+        (tol / (w * apex_share(1.0))).min(reach)
+    } else {
+        reach
+    };
+    if d <= MIN_LENGTH {
+        return 0.0;
+    }
+    let corner = before.end;
+    let jet = |p, t| Jet {
+        p,
+        d1: t,
+        d2: [0.0; 3],
+    };
+    let h = Hermite::new(
+        jet(sub(corner, scale(t_in, d)), t_in),
+        jet(add(corner, scale(t_out, d)), t_out),
+        2.0 * d,
+    );
+    own_speed(&h, feed, m)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
