@@ -85,6 +85,12 @@ struct Level {
 /// The bands crossed between `lo` and `hi`, floors clipped to lo (tops are not: see `Level`).
 fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
     let mut out = [Level::default(); MAX_BANDS + 1];
+    let n = levels_into(b, lo, hi, &mut out);
+    (out, n)
+}
+
+/// `levels` into `out`; returns how many.
+fn levels_into(b: &Banded, lo: f64, hi: f64, out: &mut [Level; MAX_BANDS + 1]) -> usize {
     let mut n = 0;
     // Band k as `Banded::limits`, `floor_of` and `top_of` give it, read in one walk: the band
     // levels, then the block's own limits above them (no top).
@@ -106,19 +112,20 @@ fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
         }
         floor_k = top_k;
     }
-    (out, n)
+    n
 }
 
 /// Forward envelope over `levels`: a² grows by 2·J per unit of speed up to each band's A (cut
 /// to it at the band's floor where the band below allowed more). Unclipped at the top.
 fn forward(levels: &[Level]) -> Pieces {
-    forward_indexed(levels).0
+    let mut fwd = Pieces::new();
+    forward_into(levels, &mut fwd, &mut [0; MAX_BANDS + 1]);
+    fwd
 }
 
-/// `forward`, with the index of each level's first piece (those of the levels below come first).
-fn forward_indexed(levels: &[Level]) -> (Pieces, [usize; MAX_BANDS + 1]) {
-    let mut fwd = Pieces::new();
-    let mut starts = [0; MAX_BANDS + 1];
+/// `forward` into `fwd` (empty), with the index of each level's first piece in `starts` (those
+/// of the levels below come first).
+fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut [usize; MAX_BANDS + 1]) {
     let mut f: f64 = 0.0;
     for (l, start) in levels.iter().zip(starts.iter_mut()) {
         *start = fwd.n;
@@ -143,7 +150,6 @@ fn forward_indexed(levels: &[Level]) -> (Pieces, [usize; MAX_BANDS + 1]) {
             f = (f * f + 2.0 * l.j * (l.top - l.floor)).sqrt();
         }
     }
-    (fwd, starts)
 }
 
 /// Backward envelope from `hi` down over `levels` (pieces by decreasing speed).
@@ -248,18 +254,20 @@ pub struct Rise<'a> {
 
 impl<'a> Rise<'a> {
     pub fn from(b: &'a Banded<'a>, lo: f64) -> Rise<'a> {
-        let (levels, n) = levels(b, lo, f64::INFINITY);
-        let (fwd, starts) = forward_indexed(&levels[..n]);
-        Rise {
+        // Built in place: a rise is a few kB, and many are built (one per start speed asked).
+        let mut rise = Rise {
             b,
             lo,
-            levels,
-            n,
-            fwd,
-            starts,
+            levels: [Level::default(); MAX_BANDS + 1],
+            n: 0,
+            fwd: Pieces::new(),
+            starts: [0; MAX_BANDS + 1],
             bwd: RefCell::new(Pieces::new()),
             below: RefCell::new([None; MAX_BANDS + 1]),
-        }
+        };
+        rise.n = levels_into(b, lo, f64::INFINITY, &mut rise.levels);
+        forward_into(&rise.levels[..rise.n], &mut rise.fwd, &mut rise.starts);
+        rise
     }
 
     pub fn lo(&self) -> f64 {
