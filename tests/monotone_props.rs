@@ -353,21 +353,32 @@ fn tolerance_failure_rate() {
     failure_rate(Just(Raise::Tolerance));
 }
 
+/// The machine of a found case: its tolerance (mm) and each axis's velocity (mm/min),
+/// acceleration (mm/s²) and jerk (mm/s³), read from a machine file as a user would write it.
+fn found_machine(tolerance: f64, axes: [[f64; 3]; 3]) -> Machine {
+    let mut text = format!("max_feed_mm_min = 60000\npath_tolerance_mm = {tolerance}\n");
+    for (name, [v, a, j]) in ["x", "y", "z"].iter().zip(axes) {
+        write!(
+            text,
+            "[axis.{name}]\nmax_velocity_mm_min = {v}\nmax_acceleration_mm_s2 = {a}\nmax_jerk_mm_s3 = {j}\n"
+        )
+        .unwrap();
+    }
+    Machine::from_toml(&text, "m.toml").expect("a valid machine")
+}
+
 /// A case `tolerance_failure_rate` found (seed 2): at 3.65 times the tolerance the fit took a
 /// 2.46 mm line and the 6 µm hook after it as one curve, whose top speed is the hook's, 11 mm/s
 /// over the whole line (the line alone runs at 109 mm/s): 1.816 s against 1.600 s. A curve surely
 /// slower than its moves run from rest to rest is not kept (path/fit.rs, `slower_than_stops`).
 #[test]
 fn a_larger_tolerance_does_not_fit_a_long_line_and_a_hook_as_one_slow_curve() {
-    let machine = |tolerance: f64| {
-        let text = format!(
-            "max_feed_mm_min = 60000\npath_tolerance_mm = {tolerance}\n\
-             [axis.x]\nmax_velocity_mm_min = 6323.97\nmax_acceleration_mm_s2 = 2276.54\nmax_jerk_mm_s3 = 4874712.9\n\
-             [axis.y]\nmax_velocity_mm_min = 12570.66\nmax_acceleration_mm_s2 = 3050.28\nmax_jerk_mm_s3 = 384783402.3\n\
-             [axis.z]\nmax_velocity_mm_min = 2746.16\nmax_acceleration_mm_s2 = 518.16\nmax_jerk_mm_s3 = 1219.05\n"
-        );
-        Machine::from_toml(&text, "m.toml").expect("a valid machine")
-    };
+    let axes = [
+        [6323.97, 2276.54, 4874712.9],
+        [12570.66, 3050.28, 384783402.3],
+        [2746.16, 518.16, 1219.05],
+    ];
+    let machine = |tolerance: f64| found_machine(tolerance, axes);
     let program = "G21 G90 G17 G64 F7663.7
 G2 X-0.0369 Y-0.1660 Z0.0000 I0.0000 J-0.0871
 G2 X0.2310 Y0.0461 Z0.0000 I0.0884 J0.1636
@@ -397,15 +408,12 @@ M30
 /// kept (path/fit.rs, `slower_than_corners`).
 #[test]
 fn a_larger_tolerance_does_not_bend_a_short_line_slower_than_its_corners() {
-    let machine = |tolerance: f64| {
-        let text = format!(
-            "max_feed_mm_min = 60000\npath_tolerance_mm = {tolerance}\n\
-             [axis.x]\nmax_velocity_mm_min = 1978.57\nmax_acceleration_mm_s2 = 3162.15\nmax_jerk_mm_s3 = 2881.25\n\
-             [axis.y]\nmax_velocity_mm_min = 1790.74\nmax_acceleration_mm_s2 = 1921.02\nmax_jerk_mm_s3 = 232963114.07\n\
-             [axis.z]\nmax_velocity_mm_min = 11607.73\nmax_acceleration_mm_s2 = 338.19\nmax_jerk_mm_s3 = 11086.26\n"
-        );
-        Machine::from_toml(&text, "m.toml").expect("a valid machine")
-    };
+    let axes = [
+        [1978.57, 3162.15, 2881.25],
+        [1790.74, 1921.02, 232963114.07],
+        [11607.73, 338.19, 11086.26],
+    ];
+    let machine = |tolerance: f64| found_machine(tolerance, axes);
     let program = "G21 G90 G17 G64 F1548.8
 G3 X0.4249 Y0.7754 Z0.0000 I0.0000 J0.5041
 G1 X0.4225 Y0.7792 Z-0.0004
