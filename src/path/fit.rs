@@ -233,7 +233,7 @@ impl SmoothBuilder {
             h.cells(|c| cells.push(c));
             piece_limits(&cells, first.feed / h.speed_bound().max(1.0), m)
         });
-        // Kept unless it is surely slower than the moves it replaces.
+        // Kept unless it is surely slower than the moves it replaces, or than one line's corners.
         let keep = |own: &CurveLimits| {
             !slower_than_stops(h.length(), own.class, moves, m) && !slower_than_corners(span, own.class, m)
         };
