@@ -64,11 +64,7 @@ pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: 
         return 0.0;
     }
     let reach = 0.5 * before.length().min(after.length());
-    let d = if w > 0.0 {
-        (tol / (w * apex_share(1.0))).min(reach)
-    } else {
-        reach
-    };
+    let d = apex_cut(tol, w, 1.0).min(reach);
     if d <= MIN_LENGTH {
         return 0.0;
     }
@@ -148,15 +144,9 @@ pub(super) fn transition(
         {
             break;
         }
-        // The cut whose apex lies at the tolerance from the corner (eq. 52 at share 1).
-        let apex_cut = if w > 0.0 {
-            tol / (w * apex_share(share))
-        } else {
-            f64::INFINITY
-        };
         // A shorter λ deviates more at the same cut: its longest admissible cut is no longer than
         // the last share's, where the search starts (fewer tolerance checks).
-        let start = apex_cut.min(reach).min(longest);
+        let start = apex_cut(tol, w, share).min(reach).min(longest);
         if let Some((found, admitted)) = search.cuts(start, share) {
             longest = admitted;
             if best.as_ref().is_none_or(|b| found.cost < b.cost - SAVING) {
@@ -206,6 +196,16 @@ const LAMBDA_SHARES: [f64; 3] = [1.0, 0.85, 0.7];
 /// so its distance from either line grows towards the apex: the largest deviation is there.
 pub(super) fn apex_share(share: f64) -> f64 {
     0.5 - 5.0 * share / 16.0
+}
+
+/// The cut whose apex lies at `tol` from a corner turning by w = |t_out − t_in| (eq. 52 at share
+/// 1; `apex_share`): ∞ where the lines do not turn.
+fn apex_cut(tol: f64, w: f64, share: f64) -> f64 {
+    if w > 0.0 {
+        tol / (w * apex_share(share))
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// What a junction's cut search needs: the two sides, the tolerance and the feed.
