@@ -276,6 +276,13 @@ pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Mach
     }
 }
 
+/// A bound from above of `curve_top_speed` without its budget's solves: the speed with no
+/// tangential motion (axis limits at constant speed, chord error, cap), where every budget's
+/// search starts and below which it only falls.
+pub fn curve_speed_ceiling(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> f64 {
+    Frame::of(cells, rho, v_cap, machine).v0
+}
+
 /// The pair (A, J) a band ending at each speed of `v` takes (`curve_bands`): the acceleration
 /// reserved for the jerk terms is the one leaving `BAND_JERK_SHARE` of J(v, 0), at most about
 /// the most a ramp within the band reaches, sqrt(2·v·J(v, 0)).
@@ -439,6 +446,7 @@ mod tests {
                     curve_top_speed(&cells, rho, cap, &m).to_bits(),
                     ours.0.v_max.to_bits()
                 );
+                assert!(curve_speed_ceiling(&cells, rho, cap, &m) >= ours.0.v_max);
                 banded += usize::from(!ours.1.is_empty());
             }
         }

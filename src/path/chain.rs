@@ -3,7 +3,8 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::{arc::curve_bands, arc::curve_top_speed, hermite::Hermite, max_bounds};
+use super::arc::{curve_bands, curve_speed_ceiling, curve_top_speed};
+use super::{hermite::Hermite, max_bounds};
 use crate::config::Machine;
 use crate::feed::bands::Bands;
 use crate::feed::Limits;
@@ -223,6 +224,11 @@ pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Curv
 /// The top speed of `piece_limits` alone (`curve_top_speed`).
 pub(super) fn piece_speed(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> f64 {
     curve_top_speed(cells, smallest_radius(cells), v_cap, m)
+}
+
+/// A bound of `piece_speed` from above, cheaper than it (`curve_speed_ceiling`).
+pub(super) fn piece_speed_ceiling(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> f64 {
+    curve_speed_ceiling(cells, smallest_radius(cells), v_cap, m)
 }
 
 /// The smallest radius of curvature the cells allow (1/|p''| for the largest |p''|).

@@ -6,7 +6,7 @@
 //! corner, where that costs less). The tolerance only admits cuts (the grid hangs from the
 //! geometry); the time picks among them, so a larger tolerance seldom picks a slower one.
 
-use super::chain::{piece_limits, piece_speed, Curve, CurveLimits};
+use super::chain::{piece_limits, piece_speed, piece_speed_ceiling, Curve, CurveLimits};
 use super::hermite::{Hermite, Jet, BOUND_PIECES};
 use super::smooth::{jet_at, joined_loss, Move, Span};
 use super::tolerance::{MIN_LENGTH, RAMP_FIT, RAMP_STEPS, REVERSAL_COS};
@@ -310,23 +310,31 @@ impl Search<'_> {
         }
         let mut best = best?;
         let (admitted, longest) = (best.k, best.d);
-        // The cut at index k, and whether it is within the tolerance and cheaper than `best` by
-        // `SAVING`.
+        // The cut at index k if it is within the tolerance and cheaper than `best` by `SAVING`.
         let try_at = |k: i32, best: &Found| {
             let (d, h) = self.at(k, first, share)?;
-            let shorter = self.found(k, d, h, own_speed(&h, self.feed, m), share);
-            let better = shorter.cost < best.cost - SAVING && self.within(d, &shorter.h);
-            Some((shorter, better))
+            let mut cells = Vec::with_capacity(BOUND_PIECES);
+            h.cells(|c| cells.push(c));
+            let cap = self.feed / h.speed_bound().max(1.0);
+            // The cost falls with the speed: where even the speed's bound without its budget
+            // solves costs no less, the cut is not taken (most tries are not), unsolved.
+            let v_ceiling = piece_speed_ceiling(&cells, cap, m);
+            let v_side = self.sides[0].v.min(self.sides[1].v);
+            if local_cost(d, h.length(), v_ceiling.min(v_side), self.sides) >= best.cost - SAVING {
+                return None;
+            }
+            let shorter = self.found(k, d, h, piece_speed(&cells, cap, m), share);
+            (shorter.cost < best.cost - SAVING && self.within(d, &shorter.h)).then_some(shorter)
         };
         // Down by halves while cheaper.
-        while let Some((shorter, true)) = try_at(best.k + OCTAVE, &best) {
+        while let Some(shorter) = try_at(best.k + OCTAVE, &best) {
             best = shorter;
         }
         // Then a quarter and an eighth of the octave about the best.
         for step in [OCTAVE / 2, OCTAVE / 4] {
             let around = [best.k - step, best.k + step];
             for k in around.into_iter().filter(|&k| k >= admitted) {
-                if let Some((b, true)) = try_at(k, &best) {
+                if let Some(b) = try_at(k, &best) {
                     best = b;
                 }
             }
