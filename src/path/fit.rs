@@ -14,7 +14,7 @@
 
 use super::chain::{piece_limits, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
-use super::junction::corner_speed;
+use super::junction::corner_faster_than;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span};
 use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
 use super::PathBlock;
@@ -263,8 +263,16 @@ fn slower_than_corners(span: Fit, class: f64, m: &Machine) -> bool {
     let hi = (span.to + 1).min(span.run.len());
     let mut corners = span.run[lo..hi].windows(2).peekable();
     corners.peek().is_some()
-        && corners
-            .all(|w| class < corner_speed(&line_of(&w[0]), &line_of(&w[1]), w[1].tolerance, w[1].feed, m))
+        && corners.all(|w| {
+            corner_faster_than(
+                &line_of(&w[0]),
+                &line_of(&w[1]),
+                w[1].tolerance,
+                w[1].feed,
+                class,
+                m,
+            )
+        })
 }
 
 /// Whether a curve of `length` and top speed `class` is surely slower than `moves`: its time at

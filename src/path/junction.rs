@@ -15,6 +15,7 @@ use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
 use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
+use crate::Vec3;
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -27,7 +28,7 @@ const DEVIATION_SAMPLES: usize = 64;
 /// top). A tiny sharp transition allows so little speed that stopping is quicker; a long gentle
 /// one (lines meeting at a rounding kink) runs at the feed.
 fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<f64> {
-    let v_max = own_speed(h, feed, m);
+    let own = Own::of(h, feed);
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,
@@ -36,37 +37,65 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<f64> {
         limits: slowest_axis(m, feed),
     })
     .duration();
+    let v_max = own.speed(m);
     (h.length() <= v_max * t_stop).then_some(v_max)
 }
 
-/// The limits of transition `h` at `feed` (`piece_limits`).
-fn own_limits(h: &Hermite, feed: f64, m: &Machine) -> CurveLimits {
-    let mut cells = Vec::with_capacity(BOUND_PIECES);
-    h.cells(|c| cells.push(c));
-    piece_limits(&cells, feed / h.speed_bound().max(1.0), m)
+/// The derivative bound cells of a transition and the speed its feed caps it at (`feed/σ`).
+struct Own {
+    cells: Vec<[Vec3; 3]>,
+    cap: f64,
 }
 
-/// The top speed of `own_limits` alone (the cuts are compared by it; only the chosen one's
-/// bands are computed).
-fn own_speed(h: &Hermite, feed: f64, m: &Machine) -> f64 {
-    let mut cells = Vec::with_capacity(BOUND_PIECES);
-    h.cells(|c| cells.push(c));
-    piece_speed(&cells, feed / h.speed_bound().max(1.0), m)
+impl Own {
+    fn of(h: &Hermite, feed: f64) -> Own {
+        let mut cells = Vec::with_capacity(BOUND_PIECES);
+        h.cells(|c| cells.push(c));
+        Own {
+            cells,
+            cap: feed / h.speed_bound().max(1.0),
+        }
+    }
+
+    /// Its limits (`piece_limits`).
+    fn limits(&self, m: &Machine) -> CurveLimits {
+        piece_limits(&self.cells, self.cap, m)
+    }
+
+    /// The top speed of its limits alone (the cuts are compared by it; only the chosen one's
+    /// bands are computed).
+    fn speed(&self, m: &Machine) -> f64 {
+        piece_speed(&self.cells, self.cap, m)
+    }
+
+    /// A bound of `speed` from above without the budget's solves: where even that decides a
+    /// comparison, the speed is not solved.
+    fn ceiling(&self, m: &Machine) -> f64 {
+        piece_speed_ceiling(&self.cells, self.cap, m)
+    }
 }
 
-/// The top speed of the transition the junction search starts from at a corner between two
-/// programmed lines `before` and `after` (cut at the apex at `tol`, at most half the shorter line,
-/// λ = 2d): what a fit replacing a line between two such corners is compared with (fit.rs).
-pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: &Machine) -> f64 {
+/// Whether the transition the junction search starts from at a corner between two programmed
+/// lines `before` and `after` (cut at the apex at `tol`, at most half the shorter line, λ = 2d)
+/// runs faster than `v`: what a fit replacing a line between two such corners is compared with
+/// (fit.rs). Not at a reversal or a corner too tight to cut.
+pub(super) fn corner_faster_than(
+    before: &Line,
+    after: &Line,
+    tol: f64,
+    feed: f64,
+    v: f64,
+    m: &Machine,
+) -> bool {
     let (t_in, t_out) = (before.direction(), after.direction());
     let w = norm(sub(t_out, t_in));
     if dot(t_in, t_out) < REVERSAL_COS {
-        return 0.0;
+        return false;
     }
     let reach = 0.5 * before.length().min(after.length());
     let d = apex_cut(tol, w, 1.0).min(reach);
     if d <= MIN_LENGTH {
-        return 0.0;
+        return false;
     }
     let corner = before.end;
     let jet = |p, t| Jet {
@@ -79,7 +108,8 @@ pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: 
         jet(add(corner, scale(t_out, d)), t_out),
         2.0 * d,
     );
-    own_speed(&h, feed, m)
+    let own = Own::of(&h, feed);
+    v < own.ceiling(m) && v < own.speed(m)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
@@ -161,7 +191,10 @@ pub(super) fn transition(
     {
         return None;
     }
-    best.map(|b| (b.d, b.d, b.h, own_limits(&b.h, feed, m)))
+    best.map(|b| {
+        let limits = Own::of(&b.h, feed).limits(m);
+        (b.d, b.d, b.h, limits)
+    })
 }
 
 /// A transition's speed at this share of the feed (or of its slower neighbour's speed) or above
@@ -313,17 +346,14 @@ impl Search<'_> {
         // The cut at index k if it is within the tolerance and cheaper than `best` by `SAVING`.
         let try_at = |k: i32, best: &Found| {
             let (d, h) = self.at(k, first, share)?;
-            let mut cells = Vec::with_capacity(BOUND_PIECES);
-            h.cells(|c| cells.push(c));
-            let cap = self.feed / h.speed_bound().max(1.0);
-            // The cost falls with the speed: where even the speed's bound without its budget
-            // solves costs no less, the cut is not taken (most tries are not), unsolved.
-            let v_ceiling = piece_speed_ceiling(&cells, cap, m);
+            let own = Own::of(&h, self.feed);
+            // The cost falls with the speed: where even the speed's ceiling costs no less, the
+            // cut is not taken (most tries are not), unsolved.
             let v_side = self.sides[0].v.min(self.sides[1].v);
-            if local_cost(d, h.length(), v_ceiling.min(v_side), self.sides) >= best.cost - SAVING {
+            if local_cost(d, h.length(), own.ceiling(m).min(v_side), self.sides) >= best.cost - SAVING {
                 return None;
             }
-            let shorter = self.found(k, d, h, piece_speed(&cells, cap, m), share);
+            let shorter = self.found(k, d, h, own.speed(m), share);
             (shorter.cost < best.cost - SAVING && self.within(d, &shorter.h)).then_some(shorter)
         };
         // Down by halves while cheaper.
