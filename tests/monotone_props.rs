@@ -28,7 +28,8 @@
 //! cost is below the best cut's (→ 3.7 / 4.3 %); the look-ahead aims at pass-through entries (→
 //! 2.9 / 3.3 %); a fitted curve surely slower than its moves is not kept (→ 2.8 / 3.1 %, worst
 //! ×1.060 / ×1.042); nor a curve over one line slower than its corners' transitions (→ 2.6 /
-//! 3.0 %, worst ×1.030 / ×1.045).
+//! 3.0 %, worst ×1.030 / ×1.045); a cut that leaves nothing of the span before is costed at no
+//! more than that span's entry speed (seeds 1–6: 203 → 199 of 6000, the worst ×1.240 → ×1.051).
 //!
 //! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
 //! every lengthened case.
@@ -429,4 +430,25 @@ G1 X-0.8642 Y3.5153 Z-0.3960
 M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0010108, 0.0031508]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 5): at 2.59 times the tolerance the transition
+/// between the second and third arcs cut all of the second (94 µm), so it followed the first
+/// arc's chain directly and joined it, at that chain's 3.4 mm/s, where its cost had counted on
+/// the second arc's 5.5 mm/s: 0.153 s against 0.124 s. A cut that leaves nothing of the span
+/// before runs no faster than that span's entry (path/junction.rs, `neighbours`).
+#[test]
+fn a_larger_tolerance_does_not_cut_a_whole_arc_into_a_slower_chain() {
+    let axes = [
+        [3529.33, 1025.49, 1551723.48],
+        [11088.40, 3109.23, 47273685.82],
+        [4270.40, 238.98, 3461.02],
+    ];
+    let program = "G21 G90 G17 G64 F429.3
+G3 X0.0003 Y0.0225 Z0.0000 I0.0018 J0.0112
+G2 X-0.0103 Y0.0832 Z0.0000 I-0.0043 J0.0305
+G2 X0.3693 Y-0.0638 Z-0.0635 I0.0760 J-0.3674
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.00985, 0.02548]);
 }

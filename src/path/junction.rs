@@ -279,10 +279,20 @@ impl Search<'_> {
         }
     }
 
+    /// The speed of the slower neighbour of a cut `d`: where it leaves nothing of the span
+    /// before, the piece before that one (no faster than the span's entry; a stop excepted).
+    fn neighbours(&self, d: f64) -> f64 {
+        let v = self.sides[0].v.min(self.sides[1].v);
+        match self.held.entry {
+            Some(e) if e > 0.0 && d >= self.held.piece.length() => v.min(e),
+            _ => v,
+        }
+    }
+
     /// Its time at the corner: faster than the slower neighbour, it runs at that one's speed
     /// (in its chain, or with no room to ramp between), so at the slowest of the three.
     fn found(&self, k: i32, d: f64, h: Hermite, v_max: f64, share: f64) -> Found {
-        let v = v_max.min(self.sides[0].v).min(self.sides[1].v);
+        let v = v_max.min(self.neighbours(d));
         Found {
             cost: local_cost(d, h.length(), v, self.sides),
             d,
@@ -349,7 +359,7 @@ impl Search<'_> {
             let own = Own::of(&h, self.feed);
             // The cost falls with the speed: where even the speed's ceiling costs no less, the
             // cut is not taken (most tries are not), unsolved.
-            let v_side = self.sides[0].v.min(self.sides[1].v);
+            let v_side = self.neighbours(d);
             if local_cost(d, h.length(), own.ceiling(m).min(v_side), self.sides) >= best.cost - SAVING {
                 return None;
             }
