@@ -29,7 +29,9 @@
 //! 2.9 / 3.3 %); a fitted curve surely slower than its moves is not kept (→ 2.8 / 3.1 %, worst
 //! ×1.060 / ×1.042); nor a curve over one line slower than its corners' transitions (→ 2.6 /
 //! 3.0 %, worst ×1.030 / ×1.045); a cut that leaves nothing of the span before is costed at no
-//! more than that span's entry speed (seeds 1–6: 203 → 199 of 6000, the worst ×1.240 → ×1.051).
+//! more than that span's entry speed (seeds 1–6: 203 → 199 of 6000, the worst ×1.240 → ×1.051);
+//! a piece is not joined to a chain where its own limits ramp clearly slower to the chain's speed
+//! (→ 185, the worst ×1.045).
 //!
 //! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
 //! every lengthened case.

@@ -421,8 +421,9 @@ pub(super) fn jet_at(piece: &Piece, u: f64) -> Jet {
 /// block end, where the acceleration is zero: a ramp from rest to the block's peak through it
 /// takes T(0, v_slow) + T(v_slow, v_peak) rather than T(0, v_peak). Joining pays when what the
 /// pieces lose to it, added up over the chain, stays within that, also counting the slower
-/// ramp within the slower side's limits `slow` (the chain's are the worst of its pieces'; a
-/// 16 µm arc from rest joined to a transition climbing in Z ramped at 45 mm/s² instead of 114).
+/// ramp within the tighter of the two sides' limits (`slow`, `fast`; the chain's are the worst
+/// of its pieces': a 16 µm arc from rest joined to a transition climbing in Z ramped at
+/// 45 mm/s² instead of 114).
 /// Decided on their times, the two ways cost about the same where the choice changes with a
 /// limit.
 pub(super) fn joined_loss(
@@ -454,9 +455,11 @@ pub(super) fn joined_loss(
     if loss > apart {
         return None;
     }
-    // Joined, the chain's limits are the worst of its pieces': where the slower side's are
-    // clearly tighter, a ramp through the chain (from rest, as `apart` counts it) takes longer
-    // (the same limits and bands ramp alike).
+    // Joined, the chain's limits are the worst of its pieces': where either side's are clearly
+    // tighter, a ramp through the chain (from rest, as `apart` counts it) takes longer (the
+    // same limits and bands ramp alike): the slower side's, or the faster side's near the
+    // slower one's speed, the top of its own budget (a 1.9 mm transition joined to a 31.8 mm
+    // arc ramped it at 0.08 m/s² instead of 0.4).
     if slow == fast {
         return Some(loss);
     }
@@ -468,14 +471,16 @@ pub(super) fn joined_loss(
     let slow_ramp = scurve7_banded::Rise::from(&slow, 0.0).time_distance(v_slow).0;
     let slower_ramp = if slow_ramp > TIGHTER_RAMP * t_slow {
         slow_ramp - t_slow
+    } else if t_slow > TIGHTER_RAMP * slow_ramp {
+        t_slow - slow_ramp
     } else {
         0.0
     };
     (loss + slower_ramp <= apart).then_some(loss)
 }
 
-/// A ramp to the slower side's speed within its limits this much longer than within the faster
-/// side's counts against joining them (below it, as between the fitted spans of one curve, whose
+/// A ramp to the slower side's speed this much longer within one side's limits than within the
+/// other's counts against joining them (below it, as between the fitted spans of one curve, whose
 /// limits differ a little, a chain still pays: they run through at one speed).
 const TIGHTER_RAMP: f64 = 1.25;
 

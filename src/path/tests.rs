@@ -424,3 +424,36 @@ fn sharp_arc_corner_uses_the_corner_feed_in_acceleration_period_mode() {
     // Arc end tangent +Y, line +X: 90° → seed-003 corner feed F_c = A·T/(1 − cos 90°) = A·T.
     assert!((out[0].v_end_max - 2.0e-3).abs() < 1e-15, "{}", out[0].v_end_max);
 }
+
+/// A chain takes the worst limits of its pieces, so a faster piece whose limits ramp far slower
+/// to the chain's speed is not joined for the little it saves. Found case (issue 19, tolerance
+/// seed 5): a 1.9 mm transition at 61.5 mm/s after a 31.8 mm arc from rest at 60.7 mm/s saved
+/// 2.2 µs joined, but the arc then ramped within the transition's top limits (0.079 m/s²,
+/// 0.139 m/s³ against its own 0.402 m/s², 2.378 m/s³): 1.494 s against 1.421 s.
+#[test]
+fn a_faster_piece_with_much_tighter_limits_does_not_join() {
+    let limits = |a_max: f64, j_max: f64, v_max: f64| Limits {
+        v_max,
+        a_max,
+        j_max,
+        snap_max: 6000.0,
+    };
+    let (arc, transition) = (limits(0.402, 2.378, 0.0607), limits(0.0789, 0.1386, 0.0615));
+    let none = Bands::default();
+    // From rest to 60.7 mm/s (closed forms): 2·sqrt(v/J) within the arc's limits (no
+    // acceleration plateau: v < A²/J), v/A + A/J within the transition's.
+    let (v, within_arc) = (0.0607, 2.0 * (0.0607f64 / 2.378).sqrt());
+    let within_transition = v / 0.0789 + 0.0789 / 0.1386;
+    assert!(
+        within_transition - within_arc > 1.0,
+        "{within_transition} vs {within_arc}"
+    );
+    let joined = smooth::joined_loss(
+        0.0,
+        (31.8e-3, 0.0607),
+        (1.9e-3, 0.0615),
+        (&transition, &none),
+        (&arc, &none),
+    );
+    assert_eq!(joined, None);
+}
