@@ -31,7 +31,8 @@
 //! 3.0 %, worst ×1.030 / ×1.045); a cut that leaves nothing of the span before is costed at no
 //! more than that span's entry speed (seeds 1–6: 203 → 199 of 6000, the worst ×1.240 → ×1.051);
 //! a piece is not joined to a chain where its own limits ramp clearly slower to the chain's speed
-//! (→ 185, the worst ×1.045).
+//! (→ 185, the worst ×1.045); a curve over one line is compared with the line's block between
+//! its corners' speeds, not with those speeds alone (→ 182).
 //!
 //! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
 //! every lengthened case.
@@ -412,8 +413,8 @@ M30
 /// A case `tolerance_failure_rate` found (seed 3): at 3.12 times the tolerance the fit took the
 /// 4 µm line between two nearly straight corners as a curve of its own, bent by the curvature of
 /// the circles through its neighbours, slower than the transitions at its two corners: 0.665 s
-/// against 0.644 s. A curve over one line that runs slower than its corners' transitions is not
-/// kept (path/fit.rs, `slower_than_corners`).
+/// against 0.644 s. A curve over one line that runs slower than the line between its corners'
+/// transitions is not kept (path/fit.rs, `slower_than_its_line`).
 #[test]
 fn a_larger_tolerance_does_not_bend_a_short_line_slower_than_its_corners() {
     let axes = [
@@ -453,4 +454,30 @@ G2 X0.3693 Y-0.0638 Z-0.0635 I0.0760 J-0.3674
 M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.00985, 0.02548]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 2): at 2.84 times the tolerance the fit took the
+/// 0.24 mm line between two corners as a curve of its own at 8.0 mm/s. Its corners' transitions
+/// ran 6.0 and 2.4 mm/s, so it was not slower than them, but the line speeds up between them
+/// (its own speed is 27.6 mm/s): 0.243 s against 0.233 s. A curve over one line is compared
+/// with the line's block from one corner's speed to the other's (path/fit.rs,
+/// `slower_than_its_line`).
+#[test]
+fn a_larger_tolerance_does_not_bend_a_line_slower_than_it_runs_between_its_corners() {
+    let axes = [
+        [1622.86, 1737.40, 45870.97],
+        [9985.44, 4403.91, 191348.16],
+        [2072.26, 987.10, 98596.67],
+    ];
+    let program = "G21 G90 G17 G64 F1731.7
+G1 X0.0010 Y0.0000 Z-0.0002
+G1 X0.0843 Y-0.0112 Z-0.0108
+G1 X0.1330 Y-0.0080 Z-0.0058
+G1 X0.3667 Y0.0071 Z0.0401
+G3 X0.3836 Y0.0278 Z0.0401 I-0.0017 J0.0187
+G1 X0.4450 Y0.0134 Z0.0358
+G2 X1.7413 Y-0.6924 Z0.2818 I-0.6312 J-2.7027
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.005841, 0.016601]);
 }

@@ -4,8 +4,8 @@
 //! 840D's COMPCURV, but interpolating the programmed points). A span is kept only if its Bézier
 //! control points — hence the whole span — lie within `SPAN_SHARE` of the tolerance of its
 //! programmed chords and it is not surely slower than its moves (`slower_than_stops`) nor, over a
-//! single line, slower than the transitions at its corners would be (`slower_than_corners`);
-//! otherwise it is split at a vertex, down to the programmed line.
+//! single line, slower than that line run between the transitions at its corners
+//! (`slower_than_its_line`); otherwise it is split at a vertex, down to the programmed line.
 //!
 //! Moves that continue one line (`continues`: a G64 Q line split at its merged vertices for the
 //! blocks it reports, CAM output that splits a straight cut) are one line here: their inner
@@ -14,7 +14,7 @@
 
 use super::chain::{piece_limits, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
-use super::junction::corner_faster_than;
+use super::junction::corner_speed;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span};
 use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
 use super::PathBlock;
@@ -233,9 +233,11 @@ impl SmoothBuilder {
             h.cells(|c| cells.push(c));
             piece_limits(&cells, first.feed / h.speed_bound().max(1.0), m)
         });
-        // Kept unless it is surely slower than the moves it replaces, or than one line's corners.
+        // Kept unless it is surely slower than the moves it replaces, or than one line between
+        // its corners.
         let keep = |own: &CurveLimits| {
-            !slower_than_stops(h.length(), own.class, moves, m) && !slower_than_corners(span, own.class, m)
+            !slower_than_stops(h.length(), own.class, moves, m)
+                && !slower_than_its_line(span, h.length(), own.class, m)
         };
         if let Some(own) = fitted.filter(keep) {
             let mut span = Span::fitted(Piece::whole(Curve::Hermite(h), first.line), moves);
@@ -252,27 +254,35 @@ impl SmoothBuilder {
     }
 }
 
-/// Whether a curve over one programmed line runs slower than the transitions at both of its
-/// ends would: where it bends more than they do, the line runs faster between its corners.
-fn slower_than_corners(span: Fit, class: f64, m: &Machine) -> bool {
+/// Whether a curve of `length` and top speed `class` over one programmed line is slower than
+/// the line run between the transitions at its corners (their speeds, where they lie within
+/// the run; else at the curve's speed): the curve's time at its top speed is above the line's
+/// block from one corner's speed to the other's, within its feed and limits.
+fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool {
     if span.to - span.from != 1 {
         return false;
     }
-    // The corners at the line's ends within the run (a run's end is the neighbour's corner).
-    let lo = span.from.saturating_sub(1);
-    let hi = (span.to + 1).min(span.run.len());
-    let mut corners = span.run[lo..hi].windows(2).peekable();
-    corners.peek().is_some()
-        && corners.all(|w| {
-            corner_faster_than(
-                &line_of(&w[0]),
-                &line_of(&w[1]),
-                w[1].tolerance,
-                w[1].feed,
-                class,
-                m,
-            )
-        })
+    let mv = &span.run[span.from];
+    let l = line_of(mv);
+    let v_feed = constant_speed_limit(&Curve::Line(l).derivative_bounds(), m).min(mv.feed);
+    let corner = |k: usize| {
+        if k >= 1 && k < span.run.len() {
+            let (a, b) = (&span.run[k - 1], &span.run[k]);
+            corner_speed(&line_of(a), &line_of(b), b.tolerance, b.feed, m)
+        } else {
+            class
+        }
+        .min(v_feed)
+    };
+    let line = scurve7::plan(&BlockRequest {
+        length: l.length(),
+        v_in: corner(span.from),
+        v_out: corner(span.to),
+        v_feed,
+        limits: line_limits(l.direction(), m),
+    })
+    .duration();
+    length > class * line
 }
 
 /// Whether a curve of `length` and top speed `class` is surely slower than `moves`: its time at

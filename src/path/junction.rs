@@ -75,27 +75,20 @@ impl Own {
     }
 }
 
-/// Whether the transition the junction search starts from at a corner between two programmed
-/// lines `before` and `after` (cut at the apex at `tol`, at most half the shorter line, λ = 2d)
-/// runs faster than `v`: what a fit replacing a line between two such corners is compared with
-/// (fit.rs). Not at a reversal or a corner too tight to cut.
-pub(super) fn corner_faster_than(
-    before: &Line,
-    after: &Line,
-    tol: f64,
-    feed: f64,
-    v: f64,
-    m: &Machine,
-) -> bool {
+/// The top speed of the transition the junction search starts from at a corner between two
+/// programmed lines `before` and `after` (cut at the apex at `tol`, at most half the shorter
+/// line, λ = 2d), 0 at a reversal or a corner too tight to cut: the speed at the corners of a
+/// line that a fit replacing it is compared with (fit.rs).
+pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: &Machine) -> f64 {
     let (t_in, t_out) = (before.direction(), after.direction());
     let w = norm(sub(t_out, t_in));
     if dot(t_in, t_out) < REVERSAL_COS {
-        return false;
+        return 0.0;
     }
     let reach = 0.5 * before.length().min(after.length());
     let d = apex_cut(tol, w, 1.0).min(reach);
     if d <= MIN_LENGTH {
-        return false;
+        return 0.0;
     }
     let corner = before.end;
     let jet = |p, t| Jet {
@@ -108,8 +101,7 @@ pub(super) fn corner_faster_than(
         jet(add(corner, scale(t_out, d)), t_out),
         2.0 * d,
     );
-    let own = Own::of(&h, feed);
-    v < own.ceiling(m) && v < own.speed(m)
+    Own::of(&h, feed).speed(m)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
