@@ -352,7 +352,8 @@ impl Search<'_> {
             // The cost falls with the speed: where even the speed's ceiling costs no less, the
             // cut is not taken (most tries are not), unsolved.
             let v_side = self.neighbours(d);
-            if local_cost(d, h.length(), own.ceiling(m).min(v_side), self.sides) >= best.cost - SAVING {
+            let at_ceiling = local_cost(d, h.length(), own.ceiling(m).min(v_side), self.sides);
+            if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
                 return None;
             }
             let shorter = self.found(k, d, h, own.speed(m), share);
@@ -384,6 +385,10 @@ const MAX_GRID: i32 = 400;
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
 /// costs keep the longer cut).
 const SAVING: f64 = 1e-6;
+/// Share of the best cut's cost by which a shorter cut's cost at its speed's ceiling must exceed
+/// it before the cut is dropped unsolved: far above the noise of the ramps' solves (`RAMP_FIT`),
+/// which makes the cost fall with the speed only to within it.
+const PRUNE_MARGIN: f64 = 1e-2;
 /// Halvings of an admitted cut tried where a stop costs less than it, before the corner stops.
 const STOP_TRIES: u32 = 4;
 
