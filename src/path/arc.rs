@@ -185,12 +185,23 @@ fn grid_at_or_above(v: f64) -> f64 {
 /// The top band takes its pair at the next grid speed above the top (or at the top, where the
 /// curve itself limits it), so a band's pair does not depend on the caps: a higher cap leaves
 /// every band as it was and adds speed above.
-pub fn curve_bands(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (Limits, Bands) {
-    let Some(Top {
-        budget,
-        v_curve,
-        v_top,
-    }) = top(cells, rho, v_cap, machine)
+/// `known`: what `curve_top_speed` solved for the same curve and cap, where it did (not solved
+/// again).
+pub fn curve_bands(
+    cells: &[[Vec3; 3]],
+    rho: f64,
+    v_cap: f64,
+    machine: &Machine,
+    known: Option<TopSpeeds>,
+) -> (Limits, Bands) {
+    let (
+        Some(Top {
+            budget,
+            v_curve,
+            v_top,
+        }),
+        _,
+    ) = top(cells, rho, v_cap, machine, known)
     else {
         return (
             curve_limits(cells, rho, v_cap, machine, NO_SHARES),
@@ -240,39 +251,57 @@ struct Top<'a> {
     v_top: f64,
 }
 
-/// The curve's `Top`, or None where it has no budget (its plain limits then).
-fn top<'a>(cells: &'a [[Vec3; 3]], rho: f64, v_cap: f64, machine: &'a Machine) -> Option<Top<'a>> {
+/// The speeds a curve's `Top` was solved to (v_curve, v_top), or None where it has no budget:
+/// kept by whoever asks for the top speed first and the bands later (junction.rs).
+pub type TopSpeeds = Option<(f64, f64)>;
+
+/// The curve's `Top`, or None where it has no budget (its plain limits then), from its speeds
+/// where they are `known`; and those speeds.
+fn top<'a>(
+    cells: &'a [[Vec3; 3]],
+    rho: f64,
+    v_cap: f64,
+    machine: &'a Machine,
+    known: Option<TopSpeeds>,
+) -> (Option<Top<'a>>, TopSpeeds) {
     let frame = Frame::of(cells, rho, v_cap, machine);
     let budget = frame.budget(cells, machine, NO_SHARES);
-    let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
-    let v_curve = TOP_SHARE * v_zero;
-    // The speed within the caps is the cap or the budget's end, each as solved to a few ulps:
-    // with the caps well above the curve's top, it is above that top too, and not solved.
-    let v_top = if frame.v0 >= v_curve * (1.0 + CAP_MARGIN) {
-        v_curve
-    } else {
-        v_curve.min(budget.max_speed(frame.v0).0)
-    };
-    (v_top > 0.0 && v_top.is_finite()).then_some(Top {
+    let speeds = known.unwrap_or_else(|| {
+        let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
+        let v_curve = TOP_SHARE * v_zero;
+        // The speed within the caps is the cap or the budget's end, each as solved to a few
+        // ulps: with the caps well above the curve's top, it is above that top too, and not
+        // solved.
+        let v_top = if frame.v0 >= v_curve * (1.0 + CAP_MARGIN) {
+            v_curve
+        } else {
+            v_curve.min(budget.max_speed(frame.v0).0)
+        };
+        (v_top > 0.0 && v_top.is_finite()).then_some((v_curve, v_top))
+    });
+    let top = speeds.map(|(v_curve, v_top)| Top {
         budget,
         v_curve,
         v_top,
-    })
+    });
+    (top, speeds)
 }
 
 /// The top speed of `curve_bands`' limits alone: the top band's pair decides whether the curve
 /// has bands (the pair of each other band is not needed for it).
-pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> f64 {
+/// Also what it solved for the top (`TopSpeeds`), which `curve_bands` takes.
+pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (f64, TopSpeeds) {
     let plain = || curve_limits(cells, rho, v_cap, machine, NO_SHARES).v_max;
-    let Some(t) = top(cells, rho, v_cap, machine) else {
-        return plain();
+    let (t, speeds) = top(cells, rho, v_cap, machine, None);
+    let Some(t) = t else {
+        return (plain(), speeds);
     };
     let above = grid_at_or_above(t.v_top);
     let (a, j) = band_pairs(&t.budget, &[above.min(t.v_curve).max(t.v_top)]);
     if a[0] <= 0.0 || j[0] <= 0.0 {
-        plain()
+        (plain(), speeds)
     } else {
-        t.v_top
+        (t.v_top, speeds)
     }
 }
 
@@ -431,7 +460,7 @@ mod tests {
                 top * (1.0 + 2e-9),
                 2.0 * top,
             ] {
-                let ours = curve_bands(&cells, rho, cap, &m);
+                let ours = curve_bands(&cells, rho, cap, &m, None);
                 let reference = bands_by_scalar_passes(&cells, rho, cap, &m);
                 assert_eq!(format!("{ours:?}"), format!("{reference:?}"), "cap {cap}");
                 assert_eq!(ours.0.v_max.to_bits(), reference.0.v_max.to_bits());
@@ -442,10 +471,10 @@ mod tests {
                         .collect::<Vec<_>>()
                 };
                 assert_eq!(levels(&ours.1), levels(&reference.1));
-                assert_eq!(
-                    curve_top_speed(&cells, rho, cap, &m).to_bits(),
-                    ours.0.v_max.to_bits()
-                );
+                let (top_speed, speeds) = curve_top_speed(&cells, rho, cap, &m);
+                assert_eq!(top_speed.to_bits(), ours.0.v_max.to_bits());
+                let known = curve_bands(&cells, rho, cap, &m, Some(speeds));
+                assert_eq!(format!("{known:?}"), format!("{ours:?}"), "cap {cap}");
                 assert!(curve_speed_ceiling(&cells, rho, cap, &m) >= ours.0.v_max);
                 banded += usize::from(!ours.1.is_empty());
             }

@@ -3,7 +3,7 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::arc::{curve_bands, curve_speed_ceiling, curve_top_speed};
+use super::arc::{curve_bands, curve_speed_ceiling, curve_top_speed, TopSpeeds};
 use super::{hermite::Hermite, max_bounds};
 use crate::config::Machine;
 use crate::feed::bands::Bands;
@@ -213,7 +213,17 @@ pub struct CurveLimits {
 /// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped
 /// at `v_cap` (`curve_bands`); its class is its top speed.
 pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
-    let (limits, bands) = curve_bands(cells, smallest_radius(cells), v_cap, m);
+    piece_limits_known(cells, v_cap, m, None)
+}
+
+/// `piece_limits`, given what `piece_speed` solved for the same cells and cap (or None).
+pub(super) fn piece_limits_known(
+    cells: &[[Vec3; 3]],
+    v_cap: f64,
+    m: &Machine,
+    known: Option<TopSpeeds>,
+) -> CurveLimits {
+    let (limits, bands) = curve_bands(cells, smallest_radius(cells), v_cap, m, known);
     CurveLimits {
         limits,
         bands,
@@ -221,8 +231,8 @@ pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Curv
     }
 }
 
-/// The top speed of `piece_limits` alone (`curve_top_speed`).
-pub(super) fn piece_speed(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> f64 {
+/// The top speed of `piece_limits` alone (`curve_top_speed`), and what it solved for it.
+pub(super) fn piece_speed(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> (f64, TopSpeeds) {
     curve_top_speed(cells, smallest_radius(cells), v_cap, m)
 }
 

@@ -6,7 +6,8 @@
 //! corner, where that costs less). The tolerance only admits cuts (the grid hangs from the
 //! geometry); the time picks among them, so a larger tolerance seldom picks a slower one.
 
-use super::chain::{piece_limits, piece_speed, piece_speed_ceiling, Curve, CurveLimits};
+use super::arc::TopSpeeds;
+use super::chain::{piece_limits, piece_limits_known, piece_speed, piece_speed_ceiling, Curve, CurveLimits};
 use super::hermite::{Hermite, Jet, BOUND_PIECES};
 use super::smooth::{jet_at, joined_loss, Move, Span};
 use super::tolerance::{MIN_LENGTH, RAMP_FIT, RAMP_STEPS, REVERSAL_COS};
@@ -27,8 +28,8 @@ const DEVIATION_SAMPLES: usize = 64;
 /// and the axes' acceleration and jerk (a stop costs at least that; the neighbours' ramps come on
 /// top). A tiny sharp transition allows so little speed that stopping is quicker; a long gentle
 /// one (lines meeting at a rounding kink) runs at the feed.
-fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<f64> {
-    let own = Own::of(h, feed);
+fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<(f64, Own)> {
+    let mut own = Own::of(h, feed);
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,
@@ -38,13 +39,15 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<f64> {
     })
     .duration();
     let v_max = own.speed(m);
-    (h.length() <= v_max * t_stop).then_some(v_max)
+    (h.length() <= v_max * t_stop).then_some((v_max, own))
 }
 
-/// The derivative bound cells of a transition and the speed its feed caps it at (`feed/σ`).
+/// The derivative bound cells of a transition, the speed its feed caps it at (`feed/σ`), and
+/// what solving its top speed found (its limits then start from there).
 struct Own {
     cells: Vec<[Vec3; 3]>,
     cap: f64,
+    top: Option<TopSpeeds>,
 }
 
 impl Own {
@@ -54,18 +57,21 @@ impl Own {
         Own {
             cells,
             cap: feed / h.speed_bound().max(1.0),
+            top: None,
         }
     }
 
     /// Its limits (`piece_limits`).
     fn limits(&self, m: &Machine) -> CurveLimits {
-        piece_limits(&self.cells, self.cap, m)
+        piece_limits_known(&self.cells, self.cap, m, self.top)
     }
 
     /// The top speed of its limits alone (the cuts are compared by it; only the chosen one's
     /// bands are computed).
-    fn speed(&self, m: &Machine) -> f64 {
-        piece_speed(&self.cells, self.cap, m)
+    fn speed(&mut self, m: &Machine) -> f64 {
+        let (v, top) = piece_speed(&self.cells, self.cap, m);
+        self.top = Some(top);
+        v
     }
 
     /// A bound of `speed` from above without the budget's solves: where even that decides a
@@ -184,7 +190,7 @@ pub(super) fn transition(
         return None;
     }
     best.map(|b| {
-        let limits = Own::of(&b.h, feed).limits(m);
+        let limits = b.own.limits(m);
         (b.d, b.d, b.h, limits)
     })
 }
@@ -196,11 +202,12 @@ pub(super) fn transition(
 const AT_FEED: f64 = 0.95;
 const TIGHT: f64 = 0.25;
 
-/// A cut found: its time at the corner, the cut, the curve and its top speed.
+/// A cut found: its time at the corner, the cut, the curve, its cells and its top speed.
 struct Found {
     cost: f64,
     d: f64,
     h: Hermite,
+    own: Own,
     v: f64,
     share: f64,
     /// Its index on the junction's grid of cuts.
@@ -283,12 +290,13 @@ impl Search<'_> {
 
     /// Its time at the corner: faster than the slower neighbour, it runs at that one's speed
     /// (in its chain, or with no room to ramp between), so at the slowest of the three.
-    fn found(&self, k: i32, d: f64, h: Hermite, v_max: f64, share: f64) -> Found {
+    fn found(&self, k: i32, d: f64, h: Hermite, (v_max, own): (f64, Own), share: f64) -> Found {
         let v = v_max.min(self.neighbours(d));
         Found {
             cost: local_cost(d, h.length(), v, self.sides),
             d,
             h,
+            own,
             v: v_max,
             share,
             k,
@@ -332,8 +340,8 @@ impl Search<'_> {
             // jerk-limited stop's as ∛d): a larger tolerance, which admits it too, must not stop
             // where a smaller one runs through.
             match faster_than_a_stop(&h, self.feed, m) {
-                Some(v_max) => {
-                    best = Some(self.found(k, d, h, v_max, share));
+                Some(speed) => {
+                    best = Some(self.found(k, d, h, speed, share));
                     break;
                 }
                 None if stop_tries == STOP_TRIES => return None,
@@ -348,7 +356,7 @@ impl Search<'_> {
         // The cut at index k if it is within the tolerance and cheaper than `best` by `SAVING`.
         let try_at = |k: i32, best: &Found| {
             let (d, h) = self.at(k, first, share)?;
-            let own = Own::of(&h, self.feed);
+            let mut own = Own::of(&h, self.feed);
             // The cost falls with the speed: where even the speed's ceiling costs no less, the
             // cut is not taken (most tries are not), unsolved.
             let v_side = self.neighbours(d);
@@ -356,7 +364,8 @@ impl Search<'_> {
             if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
                 return None;
             }
-            let shorter = self.found(k, d, h, own.speed(m), share);
+            let v_max = own.speed(m);
+            let shorter = self.found(k, d, h, (v_max, own), share);
             (shorter.cost < best.cost - SAVING && self.within(d, &shorter.h)).then_some(shorter)
         };
         // Down by halves while cheaper.
