@@ -357,8 +357,8 @@ impl Search<'_> {
         let try_at = |k: i32, best: &Found| {
             let (d, h) = self.at(k, first, share)?;
             let mut own = Own::of(&h, self.feed);
-            // The cost falls with the speed: where even the speed's ceiling costs no less, the
-            // cut is not taken (most tries are not), unsolved.
+            // The cost falls with the speed: where even the speed's ceiling costs clearly more
+            // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
             let v_side = self.neighbours(d);
             let at_ceiling = local_cost(d, h.length(), own.ceiling(m).min(v_side), self.sides);
             if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
