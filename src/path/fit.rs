@@ -262,9 +262,6 @@ fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool
     if span.to - span.from != 1 {
         return false;
     }
-    let mv = &span.run[span.from];
-    let l = line_of(mv);
-    let v_feed = constant_speed_limit(&Curve::Line(l).derivative_bounds(), m).min(mv.feed);
     let corner = |k: usize| {
         if k >= 1 && k < span.run.len() {
             let (a, b) = (&span.run[k - 1], &span.run[k]);
@@ -272,16 +269,8 @@ fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool
         } else {
             class
         }
-        .min(v_feed)
     };
-    let line = scurve7::plan(&BlockRequest {
-        length: l.length(),
-        v_in: corner(span.from),
-        v_out: corner(span.to),
-        v_feed,
-        limits: line_limits(l.direction(), m),
-    })
-    .duration();
+    let line = line_time(&span.run[span.from], corner(span.from), corner(span.to), m);
     length > class * line
 }
 
@@ -290,23 +279,23 @@ fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool
 /// bound on the lines' time, corners and all). A curve over a long move and a short hook runs
 /// the whole move at the hook's speed (2.46 mm at 11 mm/s, where the line alone runs at 109).
 fn slower_than_stops(length: f64, class: f64, moves: &[Move], m: &Machine) -> bool {
-    let stops: f64 = moves
-        .iter()
-        .map(|mv| {
-            let l = line_of(mv);
-            let curve = Curve::Line(l);
-            let v_feed = constant_speed_limit(&curve.derivative_bounds(), m).min(mv.feed);
-            scurve7::plan(&BlockRequest {
-                length: l.length(),
-                v_in: 0.0,
-                v_out: 0.0,
-                v_feed,
-                limits: line_limits(l.direction(), m),
-            })
-            .duration()
-        })
-        .sum();
+    let stops: f64 = moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum();
     length > class * stops
+}
+
+/// Time of the line of `mv` as one block from `v_in` to `v_out`, each at most its own speed
+/// (its feed and eq. 11), within its axis limits.
+fn line_time(mv: &Move, v_in: f64, v_out: f64, m: &Machine) -> f64 {
+    let l = line_of(mv);
+    let v_feed = constant_speed_limit(&Curve::Line(l).derivative_bounds(), m).min(mv.feed);
+    scurve7::plan(&BlockRequest {
+        length: l.length(),
+        v_in: v_in.min(v_feed),
+        v_out: v_out.min(v_feed),
+        v_feed,
+        limits: line_limits(l.direction(), m),
+    })
+    .duration()
 }
 
 /// The moves `from` … `to` of a run, being fitted.

@@ -469,14 +469,13 @@ pub(super) fn joined_loss(
         bands: slow.1,
     };
     let slow_ramp = scurve7_banded::Rise::from(&slow, 0.0).time_distance(v_slow).0;
-    let slower_ramp = if slow_ramp > TIGHTER_RAMP * t_slow {
-        slow_ramp - t_slow
-    } else if t_slow > TIGHTER_RAMP * slow_ramp {
-        t_slow - slow_ramp
+    let (tighter, looser) = (slow_ramp.max(t_slow), slow_ramp.min(t_slow));
+    let tighter_ramp = if tighter > TIGHTER_RAMP * looser {
+        tighter - looser
     } else {
         0.0
     };
-    (loss + slower_ramp <= apart).then_some(loss)
+    (loss + tighter_ramp <= apart).then_some(loss)
 }
 
 /// A ramp to the slower side's speed this much longer within one side's limits than within the
