@@ -10,6 +10,7 @@ import ctypes
 import pathlib
 import shutil
 import tempfile
+import weakref
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
@@ -52,9 +53,12 @@ class Unpacked:
         self.md = read_model_description(str(self.path))
         self.dir = extract(str(self.path), unzipdir=tempfile.mkdtemp(prefix=self.path.stem + "_"))
         self.vars = {v.name: v for v in self.md.modelVariables}
+        # Removed when this is collected or the interpreter exits, if `cleanup` was not called
+        # (a Dask worker's cache, a caller that forgets): no extracted FMU is left in the temp folder.
+        self._remove = weakref.finalize(self, shutil.rmtree, self.dir, ignore_errors=True)
 
     def cleanup(self) -> None:
-        shutil.rmtree(self.dir, ignore_errors=True)
+        self._remove()
 
     def names(self, causality: str) -> list[str]:
         return [v.name for v in self.md.modelVariables if v.causality == causality]

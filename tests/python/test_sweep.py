@@ -1,5 +1,6 @@
 """The Dask sweep on a 2-worker LocalCluster gives the serial results, case for case."""
 import pathlib
+import tempfile
 import cnc_motion_sim as sim
 from cnc_motion_sim import sweep
 
@@ -9,8 +10,11 @@ def test_sweep_local_cluster_equals_serial(fmus: tuple[pathlib.Path, pathlib.Pat
     prog.write_text("G21 G90 G17 G64\nG1 X20 F3000\nG1 Y10\nG0 X0 Y0\nM30\n")
     case_list = sweep.cases([prog], ["scurve7", "trapezoid"], [20000.0, 80000.0])
     serial = sweep.run_serial(case_list)
+    unpacked = set(pathlib.Path(tempfile.gettempdir()).glob("CncMotion_*"))
     parallel = sweep.run_dask(case_list, n_workers=2)
     assert parallel == serial
+    # Each worker unpacked the FMU into the temp folder; a closed cluster leaves none of it behind.
+    assert set(pathlib.Path(tempfile.gettempdir()).glob("CncMotion_*")) == unpacked
     # The sweep sees the jerk limit: a lower limit takes longer.
     t = {(r["profile"], r["jerk_mm_s3"]): r["cycle_time_s"] for r in serial}
     assert t[("scurve7", 20000.0)] > t[("scurve7", 80000.0)]
