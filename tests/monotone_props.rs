@@ -481,3 +481,45 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.005841, 0.016601]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 3): the program starts at rest on a 0.27 mm arc.
+/// At 2.71 times the tolerance the transition to the next arc cut 0.23 mm of it, costed at the
+/// 14.9 mm/s the whole arc reaches from rest; the 43 µm it left reaches far less, so the longer
+/// transition started slower: 0.185 s against 0.180 s. A cut is costed no faster than the span
+/// before reaches from its entry over what the cut leaves of it (path/junction.rs, `neighbours`).
+#[test]
+fn a_larger_tolerance_does_not_cut_into_an_arc_still_rising_from_rest() {
+    let axes = [
+        [5485.22, 807.23, 474706292.75],
+        [2403.17, 1489.44, 86177967.64],
+        [12550.48, 207.04, 26030.45],
+    ];
+    let program = "G21 G90 G17 G64 F3975.7
+G3 X0.2386 Y0.1112 Z0.0000 I-0.0001 J0.3117
+G3 X1.9439 Y3.6348 Z0.9534 I-6.1064 J5.1296
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.01035, 0.02809]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 5): the program ends on a 2.84 mm arc. At 3.81
+/// times the tolerance the transition from the 33.7 mm line before it cut half of it, 1.42 mm,
+/// costed as if the arc ran on at its own 13.9 mm/s after it; it stops at the program's end,
+/// from at most 11.8 mm/s over its length: 1.789 s against 1.745 s. The last span before a stop
+/// is known to end at rest, and a cut is costed no faster than it stops from over what is left
+/// (path/smooth.rs, `flush_to_stop`; path/junction.rs, `neighbours`).
+#[test]
+fn a_larger_tolerance_does_not_cut_into_an_arc_that_stops_the_program() {
+    let axes = [
+        [4185.95, 480.23, 1346.67],
+        [5781.84, 3690.82, 184905454.69],
+        [1827.93, 3745.09, 307299079.57],
+    ];
+    let program = "G21 G90 G17 G64 F1823.7
+G3 X0.0010 Y0.0005 Z0.0001 I0.0000 J0.0014
+G1 X22.4094 Y24.6497 Z5.1824
+G3 X21.4055 Y26.8339 Z5.1824 I-1.2268 J0.7590
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.04813, 0.18342]);
+}

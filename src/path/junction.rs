@@ -14,6 +14,7 @@ use super::tolerance::{MIN_LENGTH, RAMP_FIT, RAMP_STEPS, REVERSAL_COS};
 use super::{constant_speed_limit, line_limits, slowest_axis};
 use crate::config::Machine;
 use crate::feed::bands::{Banded, Bands};
+use crate::feed::scurve7_banded::Rise;
 use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
 use crate::Vec3;
@@ -136,22 +137,41 @@ pub(super) fn transition(
     );
     let feed = held.last.feed.min(next.first.feed);
     let mut sides = [side(held, held.last.feed, m), side(next, next.first.feed, m)];
-    // The span before runs no faster at the corner than it reaches from its start.
-    if let Some(entry) = held.entry.filter(|&v| v < sides[0].v) {
-        let banded = Banded {
-            kind: ProfileKind::Scurve7,
-            top: &sides[0].top,
-            bands: &sides[0].bands,
-        };
-        let v_reach = scurve7_banded::max_speed(&banded, held.piece.length(), entry);
-        sides[0].v = sides[0].v.min(v_reach);
+    // The span before rises from its entry speed, the span after drops to its exit speed where
+    // known (a drop takes what the rise takes), each within its own limits (copied: the sides
+    // change below). Neither runs faster at the corner than that reaches over its length.
+    let lengths = [held.piece.length(), next.piece.length()];
+    let known = [held.entry, next.exit];
+    let ends: [Option<End>; 2] = std::array::from_fn(|k| {
+        let side = &sides[k];
+        known[k].filter(|&v| v < side.v).map(|v| End {
+            v: v.max(0.0),
+            top: side.top,
+            bands: side.bands.clone(),
+        })
+    });
+    let banded = ends.each_ref().map(|e| e.as_ref().map(End::banded));
+    let rises: [Option<Rise>; 2] = std::array::from_fn(|k| {
+        let (b, e) = (banded[k].as_ref()?, ends[k].as_ref()?);
+        Some(Rise::from(b, e.v))
+    });
+    for (side, (rise, length)) in sides.iter_mut().zip(rises.iter().zip(lengths)) {
+        if let Some(rise) = rise {
+            side.v = side.v.min(rise.max_speed(length));
+        }
     }
     joined_sides(&mut sides);
+    let slower = sides[0].v.min(sides[1].v);
     let search = Search {
         held,
         next,
         reach,
         sides: &sides,
+        // With the distance each takes to the slower side's speed: a cut that leaves less of
+        // its span meets the transition slower than that.
+        ends: rises
+            .each_ref()
+            .map(|r| r.as_ref().map(|rise| (rise, rise.time_distance(slower).1))),
         feed,
         lines,
         m,
@@ -247,6 +267,10 @@ struct Search<'a> {
     /// The longest cut (the top of the grid of cuts).
     reach: f64,
     sides: &'a [Side; 2],
+    /// The span before's rise from its entry speed and the span after's drop to its exit speed,
+    /// where known and below their own, each with the distance it takes to the slower side's
+    /// speed.
+    ends: [Option<(&'a Rise<'a>, f64)>; 2],
     feed: f64,
     lines: bool,
     m: &'a Machine,
@@ -278,9 +302,29 @@ impl Search<'_> {
         }
     }
 
-    /// The speed of the slower neighbour of a cut `d`: where it leaves nothing of the span
-    /// before, the piece before that one (no faster than the span's entry; a stop excepted).
+    /// The speed of the slower neighbour of a cut `d` (`neighbours_above`), no faster than the
+    /// span before reaches from its entry over what the cut leaves of it, nor than the span
+    /// after stops from over what is left of it where it ends at rest: the transition meets them
+    /// there (a longer cut leaves less room). A cut that leaves nothing of a span that starts at
+    /// rest starts at rest: speed 0, never taken over a shorter cut.
     fn neighbours(&self, d: f64) -> f64 {
+        let rests = [self.held.piece.length(), self.next.piece.length()].map(|l| (l - d).max(0.0));
+        if rests[0] == 0.0 && self.held.entry == Some(0.0) {
+            return 0.0;
+        }
+        let mut v = self.neighbours_above(d);
+        for (end, rest) in self.ends.iter().zip(rests) {
+            if let Some((rise, _)) = end.filter(|&(_, to_slower)| rest < to_slower) {
+                v = v.min(rise.max_speed(rest));
+            }
+        }
+        v
+    }
+
+    /// The slower side's speed; where the cut leaves nothing of the span before, no faster than
+    /// that span's entry, the piece before it (a stop excepted): `neighbours` from above without
+    /// the rises' solves (the ceiling a cut is pruned by).
+    fn neighbours_above(&self, d: f64) -> f64 {
         let v = self.sides[0].v.min(self.sides[1].v);
         match self.held.entry {
             Some(e) if e > 0.0 && d >= self.held.piece.length() => v.min(e),
@@ -359,7 +403,7 @@ impl Search<'_> {
             let mut own = Own::of(&h, self.feed);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
-            let v_side = self.neighbours(d);
+            let v_side = self.neighbours_above(d);
             let at_ceiling = local_cost(d, h.length(), own.ceiling(m).min(v_side), self.sides);
             if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
                 return None;
@@ -410,6 +454,24 @@ struct Side {
     length: f64,
     curved: bool,
     feed: f64,
+}
+
+/// A side's speed where its span begins (the span before) or ends (the span after), where
+/// known, and a copy of the limits it ramps within.
+struct End {
+    v: f64,
+    top: Limits,
+    bands: Bands,
+}
+
+impl End {
+    fn banded(&self) -> Banded<'_> {
+        Banded {
+            kind: ProfileKind::Scurve7,
+            top: &self.top,
+            bands: &self.bands,
+        }
+    }
 }
 
 /// The side of a junction that `span` is (its limits computed once, kept on the span).

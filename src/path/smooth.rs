@@ -13,7 +13,8 @@
 //!    of the programmed geometry (closed form between lines; a sampled check with a guaranteed
 //!    guard between samples otherwise), and a stop instead where the transition would be
 //!    slower. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the program's stops
-//!    stop the path.
+//!    stop the path. Before a stop, the last span's junction waits for it (one more span held):
+//!    the span is known to end at rest.
 //! 3. Chains. Consecutive pieces of similar speed class join one chain (chain.rs); its limits
 //!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
@@ -71,6 +72,10 @@ pub(super) struct Span {
     /// the transition before it, None where it joins its predecessor (junction.rs bounds its
     /// speed at the corner after it by what it can reach from there).
     pub(super) entry: Option<f64>,
+    /// Bound on its speed where it ends: 0 where a stop follows it (known to the last span
+    /// before a stop, `flush_to_stop`), None otherwise.
+    #[serde(skip)]
+    pub(super) exit: Option<f64>,
 }
 
 impl Span {
@@ -83,6 +88,7 @@ impl Span {
             moves: vec![mv],
             own: None,
             entry: Some(0.0),
+            exit: None,
         }
     }
 
@@ -106,6 +112,7 @@ impl Span {
             moves: moves.to_vec(),
             own: None,
             entry: Some(0.0),
+            exit: None,
         }
     }
 
@@ -174,6 +181,10 @@ pub struct SmoothBuilder {
     chain_sigma: f64,
     /// The limits of the chain's only piece, while it has one (computed when it was added).
     chain_single: Option<CurveLimits>,
+    /// While the builder flushes to a stop (`flush_to_stop`), the last span stage 1 gave, which
+    /// waits for the next one (its junction) or for the stop (it ends there).
+    #[serde(skip)]
+    to_stop: Option<Option<Span>>,
 }
 
 impl SmoothBuilder {
@@ -205,6 +216,7 @@ impl SmoothBuilder {
             chain_straight: true,
             chain_sigma: 1.0,
             chain_single: None,
+            to_stop: None,
         }
     }
 
@@ -215,11 +227,10 @@ impl SmoothBuilder {
                 if self.run.len() >= RUN_MAX {
                     self.flush_run(true, m, out);
                 }
+            } else if last.exact || mv.exact {
+                self.flush_to_stop(m, out);
             } else {
                 self.flush_run(false, m, out);
-                if last.exact || mv.exact {
-                    self.flush_held(m, out);
-                }
             }
         }
         self.run.push(mv);
@@ -227,12 +238,36 @@ impl SmoothBuilder {
 
     /// Stop at the end of everything received (dwell, M0, program end).
     pub fn stop(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
+        self.flush_to_stop(m, out);
+    }
+
+    /// Stages 1 and 2 up to a stop: the last span's junction knows that it ends at rest
+    /// (its exit, a bound on the transition before it).
+    fn flush_to_stop(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
+        self.to_stop = Some(None);
         self.flush_run(false, m, out);
+        if let Some(Some(mut last)) = self.to_stop.take() {
+            last.exit = Some(0.0);
+            self.join(last, m, out);
+        }
         self.flush_held(m, out);
     }
 
+    /// Stage 2 for the span stage 1 gives: joined to the held span now, or, while flushing to a
+    /// stop, once the next one comes (the last waits for the stop).
+    pub(super) fn junction(&mut self, next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
+        match &mut self.to_stop {
+            Some(waiting) => {
+                if let Some(span) = waiting.replace(next) {
+                    self.join(span, m, out);
+                }
+            }
+            None => self.join(next, m, out),
+        }
+    }
+
     /// Stage 2: join `next` to the held span.
-    pub(super) fn junction(&mut self, mut next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
+    fn join(&mut self, mut next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
         let Some(mut held) = self.held.take() else {
             self.held = Some(next);
             return;
