@@ -302,28 +302,32 @@ impl Search<'_> {
         }
     }
 
-    /// The speed of the slower neighbour of a cut `d` (`neighbours_above`), no faster than the
-    /// span before reaches from its entry over what the cut leaves of it, nor than the span
-    /// after stops from over what is left of it where it ends at rest: the transition meets them
-    /// there (a longer cut leaves less room). A cut that leaves nothing of a span that starts at
-    /// rest starts at rest: speed 0, never taken over a shorter cut.
-    fn neighbours(&self, d: f64) -> f64 {
+    /// The speed cut `d` is costed at: its own top speed `v_max`, no faster than the slower
+    /// neighbour (`neighbours_above`), than the span before reaches from its entry over what
+    /// the cut leaves of it, nor than the span after stops from over what is left of it where
+    /// it ends at rest: the transition meets them there (a longer cut leaves less room). Each
+    /// rise is solved only where it takes more than that rest to the speed so far. A cut that
+    /// leaves nothing of a span that starts at rest starts at rest: speed 0, never taken over a
+    /// shorter cut.
+    fn speed(&self, d: f64, v_max: f64) -> f64 {
         let rests = [self.held.piece.length(), self.next.piece.length()].map(|l| (l - d).max(0.0));
         if rests[0] == 0.0 && self.held.entry == Some(0.0) {
             return 0.0;
         }
-        let mut v = self.neighbours_above(d);
+        let mut v = self.neighbours_above(d).min(v_max);
         for (end, rest) in self.ends.iter().zip(rests) {
             if let Some((rise, _)) = end.filter(|&(_, to_slower)| rest < to_slower) {
-                v = v.min(rise.max_speed(rest));
+                if rise.time_distance(v).1 > rest {
+                    v = v.min(rise.max_speed(rest));
+                }
             }
         }
         v
     }
 
     /// The slower side's speed; where the cut leaves nothing of the span before, no faster than
-    /// that span's entry, the piece before it (a stop excepted): `neighbours` from above without
-    /// the rises' solves (the ceiling a cut is pruned by).
+    /// that span's entry, the piece before it (a stop excepted): `speed` from above without the
+    /// rises' solves (the ceiling a cut is pruned by).
     fn neighbours_above(&self, d: f64) -> f64 {
         let v = self.sides[0].v.min(self.sides[1].v);
         match self.held.entry {
@@ -335,7 +339,7 @@ impl Search<'_> {
     /// Its time at the corner: faster than the slower neighbour, it runs at that one's speed
     /// (in its chain, or with no room to ramp between), so at the slowest of the three.
     fn found(&self, k: i32, d: f64, h: Hermite, (v_max, own): (f64, Own), share: f64) -> Found {
-        let v = v_max.min(self.neighbours(d));
+        let v = self.speed(d, v_max);
         Found {
             cost: local_cost(d, h.length(), v, self.sides),
             d,
