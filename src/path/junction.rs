@@ -151,11 +151,11 @@ pub(super) fn transition(
         })
     });
     let banded = ends.each_ref().map(|e| e.as_ref().map(End::banded));
-    let rises: [Option<Rise>; 2] = std::array::from_fn(|k| {
-        let (b, e) = (banded[k].as_ref()?, ends[k].as_ref()?);
-        Some(Rise::from(b, e.v))
-    });
-    for (side, (rise, length)) in sides.iter_mut().zip(rises.iter().zip(lengths)) {
+    // Each rise is a few kB: built where it stays, not moved through an array.
+    let rise = |k: usize| Some(Rise::from(banded[k].as_ref()?, ends[k].as_ref()?.v));
+    let (before, after) = (rise(0), rise(1));
+    let rises = [before.as_ref(), after.as_ref()];
+    for (side, (rise, length)) in sides.iter_mut().zip(rises.into_iter().zip(lengths)) {
         if let Some(rise) = rise {
             side.v = side.v.min(rise.max_speed(length));
         }
@@ -169,9 +169,7 @@ pub(super) fn transition(
         sides: &sides,
         // With the distance each takes to the slower side's speed: a cut that leaves less of
         // its span meets the transition slower than that.
-        ends: rises
-            .each_ref()
-            .map(|r| r.as_ref().map(|rise| (rise, rise.time_distance(slower).1))),
+        ends: rises.map(|r| r.map(|rise| (rise, rise.time_distance(slower).1))),
         feed,
         lines,
         m,
