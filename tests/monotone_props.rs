@@ -523,3 +523,29 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.04813, 0.18342]);
 }
+
+/// A case `limit_failure_rate` found (seed 4): two lines, the second (1.25 mm) the last before
+/// the program's end. At 2.51 times every axis's velocity limit the corner stopped instead of
+/// taking its transition: its cost counted the second line as running on at 35 mm/s after a
+/// stop, the most it stops from over its whole length, where from rest it reaches far less:
+/// 0.250 s against 0.240 s. The side that ends at a stop is costed by its block from the
+/// transition's speed to rest over what is left of it (path/junction.rs, `local_cost`).
+#[test]
+fn a_higher_velocity_limit_does_not_stop_before_the_last_line() {
+    let program = "G21 G90 G17 G64 F8399.1
+G1 X1.5137 Y-5.0667 Z0.0042
+G1 X1.8664 Y-6.2505 Z-0.1708
+M30
+";
+    let (a, j) = ([319.32, 2626.14, 3255.83], [581931443.67, 524119117.64, 3940.46]);
+    let axes = |v: [f64; 3]| [0, 1, 2].map(|k| [v[k], a[k], j[k]]);
+    let low = time(
+        program,
+        &found_machine(0.08683, axes([1885.04, 3741.59, 1789.42])),
+    );
+    let high = time(
+        program,
+        &found_machine(0.08683, axes([4735.22, 9398.87, 4495.02])),
+    );
+    assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
+}

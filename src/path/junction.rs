@@ -160,6 +160,7 @@ pub(super) fn transition(
             side.v = side.v.min(rise.max_speed(length));
         }
     }
+    sides[1].end = next.exit;
     joined_sides(&mut sides);
     let slower = sides[0].v.min(sides[1].v);
     let search = Search {
@@ -456,6 +457,8 @@ struct Side {
     length: f64,
     curved: bool,
     feed: f64,
+    /// The speed its span ends at, where known (the span after, before a stop).
+    end: Option<f64>,
 }
 
 /// A side's speed where its span begins (the span before) or ends (the span after), where
@@ -501,6 +504,7 @@ fn side(span: &mut Span, feed: f64, m: &Machine) -> Side {
         length: piece.length(),
         curved: !matches!(piece.curve, Curve::Line(_)),
         feed,
+        end: None,
     }
 }
 
@@ -521,11 +525,26 @@ fn joined_sides(sides: &mut [Side; 2]) {
 /// Time a transition of cut `d` (on both sides) and `length` at speed `v` adds to the corner: its
 /// own run, less the stretches of the neighbours it replaces at their own speeds, plus what each
 /// neighbour loses to the ramp between `v` and its own speed (the fastest within its limits and
-/// bands, `scurve7_banded`, as far as its length reaches): T − D/v_side over the ramp.
+/// bands, `scurve7_banded`, as far as its length reaches): T − D/v_side over the ramp. A
+/// neighbour whose end speed is known (the last span before a stop) counts its block from `v`
+/// to that end over what the cut leaves of it instead (less its whole length at its speed, as
+/// the others): it does not run on at its own speed.
 fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
     let mut cost = length / v.max(f64::MIN_POSITIVE);
     for s in sides {
         let v_side = s.v.max(f64::MIN_POSITIVE);
+        let banded = Banded {
+            kind: ProfileKind::Scurve7,
+            top: &s.top,
+            bands: &s.bands,
+        };
+        if let Some(v_end) = s.end {
+            // Its block from v to its end over what is left of it, less the same constant.
+            let rest = (s.length - d).max(0.0);
+            let (t, _) = scurve7_banded::plan_time(&banded, rest, v.clamp(0.0, v_side), v_end, v_side);
+            cost += t - s.length / v_side;
+            continue;
+        }
         cost -= d / v_side;
         if v < v_side {
             let (v0, rest) = (v.max(0.0), (s.length - d).max(0.0));
@@ -533,11 +552,6 @@ fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
                 // One band: scurve7's closed forms.
                 scurve7::rise_within(v0, v_side, rest, &s.top)
             } else {
-                let banded = Banded {
-                    kind: ProfileKind::Scurve7,
-                    top: &s.top,
-                    bands: &s.bands,
-                };
                 // Every ramp here rises from v (one forward envelope).
                 ramp_within(&scurve7_banded::Rise::from(&banded, v0), v_side, rest)
             };
