@@ -302,18 +302,22 @@ impl Search<'_> {
     }
 
     /// The speed cut `d` is costed at: its own top speed `v_max`, no faster than the slower
-    /// neighbour (`neighbours_above`), than the span before reaches from its entry over what
-    /// the cut leaves of it, nor than the span after stops from over what is left of it where
-    /// it ends at rest: the transition meets them there (a longer cut leaves less room). Each
-    /// rise is solved only where it takes more than that rest to the speed so far. A cut that
-    /// leaves nothing of a span that starts at rest starts at rest: speed 0, never taken over a
-    /// shorter cut.
+    /// neighbour (where the cut leaves nothing of the span before, the piece before it: no
+    /// faster than that span's entry), than the span before reaches from its entry over what the
+    /// cut leaves of it, nor than the span after stops from over what is left of it where it
+    /// ends at rest: the transition meets them there (a longer cut leaves less room). Each rise
+    /// is solved only where it takes more than that rest to the speed so far. A cut that leaves
+    /// nothing of a span that starts at rest starts at rest: speed 0, never taken over a shorter
+    /// cut. At the speed's ceiling it bounds the cost from below (`try_at` prunes by it).
     fn speed(&self, d: f64, v_max: f64) -> f64 {
         let rests = [self.held.piece.length(), self.next.piece.length()].map(|l| (l - d).max(0.0));
         if rests[0] == 0.0 && self.held.entry == Some(0.0) {
             return 0.0;
         }
-        let mut v = self.neighbours_above(d).min(v_max);
+        let mut v = v_max.min(self.sides[0].v).min(self.sides[1].v);
+        if rests[0] == 0.0 {
+            v = v.min(self.held.entry.unwrap_or(v));
+        }
         for (end, rest) in self.ends.iter().zip(rests) {
             if let Some((rise, _)) = end.filter(|&(_, to_slower)| rest < to_slower) {
                 if rise.time_distance(v).1 > rest {
@@ -322,17 +326,6 @@ impl Search<'_> {
             }
         }
         v
-    }
-
-    /// The slower side's speed; where the cut leaves nothing of the span before, no faster than
-    /// that span's entry, the piece before it (a stop excepted): `speed` from above without the
-    /// rises' solves (the ceiling a cut is pruned by).
-    fn neighbours_above(&self, d: f64) -> f64 {
-        let v = self.sides[0].v.min(self.sides[1].v);
-        match self.held.entry {
-            Some(e) if e > 0.0 && d >= self.held.piece.length() => v.min(e),
-            _ => v,
-        }
     }
 
     /// Its time at the corner: faster than the slower neighbour, it runs at that one's speed
@@ -406,8 +399,7 @@ impl Search<'_> {
             let mut own = Own::of(&h, self.feed);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
-            let v_side = self.neighbours_above(d);
-            let at_ceiling = local_cost(d, h.length(), own.ceiling(m).min(v_side), self.sides);
+            let at_ceiling = local_cost(d, h.length(), self.speed(d, own.ceiling(m)), self.sides);
             if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
                 return None;
             }
