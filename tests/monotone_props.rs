@@ -553,3 +553,26 @@ M30
     );
     assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
 }
+
+/// A case `tolerance_failure_rate` found (seed 3): a 12.2 mm line, a 4.5 mm arc and a tight
+/// 0.12 mm arc. At 2.85 times the tolerance the corner between the line and the first arc took
+/// a longer cut (1.58 mm instead of 1.33), costed as if the arc ran on at its own 51 mm/s; it
+/// slows to 2 mm/s for the corner at its end: 0.765 s against 0.730 s. A span's junction waits
+/// for the span after it, and the ceiling of the transition there bounds how fast it is counted
+/// at the corner before (path/smooth.rs, `junction`; path/junction.rs, `corner_ceiling`).
+#[test]
+fn a_larger_tolerance_does_not_cut_into_an_arc_that_slows_for_its_next_corner() {
+    let axes = [
+        [4993.55, 463.09, 647225283.68],
+        [4150.38, 586.30, 3069.45],
+        [2534.01, 3283.39, 18032.83],
+    ];
+    let program = "G21 G90 G17 G64 F10711.0
+G1 X1.4887 Y-0.0003 Z0.3624
+G1 X13.6824 Y-0.0025 Z-0.2426
+G3 X17.7120 Y1.6461 Z-0.2426 I0.0010 J5.7464
+G3 X17.7296 Y1.7554 Z-0.2426 I-0.0655 J0.0666
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.03423, 0.09762]);
+}

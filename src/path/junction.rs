@@ -111,6 +111,29 @@ pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: 
     Own::of(&h, feed).speed(m)
 }
 
+/// The ceiling of the speed of the transition between `held` and `next` as the search starts
+/// (the apex cut at the tolerance within the reach, `Own::ceiling`; no tolerance check, no
+/// budget solves): the speed `held` is taken to leave at when the corner before it is chosen.
+/// An estimate: the search may take a shorter cut, or a stop. 0 at a reversal or a corner too
+/// tight to cut.
+pub(super) fn corner_ceiling(held: &Span, next: &Span, m: &Machine) -> f64 {
+    let end = jet_at(&held.piece, held.piece.length());
+    let start = jet_at(&next.piece, 0.0);
+    let (t_in, t_out) = (unit(end.d1), unit(start.d1));
+    if dot(t_in, t_out) < REVERSAL_COS {
+        return 0.0;
+    }
+    let reach = held.piece.length().min(0.5 * next.piece.length());
+    let d = apex_cut(held.last.tolerance, norm(sub(t_out, t_in)), 1.0).min(reach);
+    if d <= MIN_LENGTH {
+        return 0.0;
+    }
+    let a = jet_at(&held.piece, held.piece.length() - d);
+    let b = jet_at(&next.piece, d);
+    let feed = held.last.feed.min(next.first.feed);
+    Own::of(&Hermite::new(a, b, 2.0 * d), feed).ceiling(m)
+}
+
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
 /// (stop) at a reversal or when no cut keeps the tolerance.
 pub(super) fn transition(
@@ -160,7 +183,8 @@ pub(super) fn transition(
             side.v = side.v.min(rise.max_speed(length));
         }
     }
-    sides[1].end = next.exit;
+    // At a stop (not an estimate), its block to rest is costed (`local_cost`).
+    sides[1].end = next.exit.filter(|&x| x == 0.0);
     joined_sides(&mut sides);
     let slower = sides[0].v.min(sides[1].v);
     let search = Search {
@@ -304,11 +328,12 @@ impl Search<'_> {
     /// The speed cut `d` is costed at: its own top speed `v_max`, no faster than the slower
     /// neighbour (where the cut leaves nothing of the span before, the piece before it: no
     /// faster than that span's entry), than the span before reaches from its entry over what the
-    /// cut leaves of it, nor than the span after stops from over what is left of it where it
-    /// ends at rest: the transition meets them there (a longer cut leaves less room). Each rise
-    /// is solved only where it takes more than that rest to the speed so far. A cut that leaves
-    /// nothing of a span that starts at rest starts at rest: speed 0, never taken over a shorter
-    /// cut. At the speed's ceiling it bounds the cost from below (`try_at` prunes by it).
+    /// cut leaves of it, nor than the span after slows from to its exit (rest at a stop, else the
+    /// ceiling of the transition at its end) over what is left of it: the transition meets them
+    /// there (a longer cut leaves less room). Each rise is solved only where it takes more than
+    /// that rest to the speed so far. A cut that leaves nothing of a span that starts at rest
+    /// starts at rest: speed 0, never taken over a shorter cut. At the speed's ceiling it bounds
+    /// the cost from below (`try_at` prunes by it).
     fn speed(&self, d: f64, v_max: f64) -> f64 {
         let rests = [self.held.piece.length(), self.next.piece.length()].map(|l| (l - d).max(0.0));
         if rests[0] == 0.0 && self.held.entry == Some(0.0) {

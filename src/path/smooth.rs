@@ -13,8 +13,8 @@
 //!    of the programmed geometry (closed form between lines; a sampled check with a guaranteed
 //!    guard between samples otherwise), and a stop instead where the transition would be
 //!    slower. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the program's stops
-//!    stop the path. Before a stop, the last span's junction waits for it (one more span held):
-//!    the span is known to end at rest.
+//!    stop the path. A span's junction waits for the span after it (one more span held): the
+//!    transition at its far end, or a stop, bounds how fast it may leave the corner before.
 //! 3. Chains. Consecutive pieces of similar speed class join one chain (chain.rs); its limits
 //!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
 //!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
@@ -22,7 +22,7 @@
 use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::fit::VertexJet;
 use super::hermite::{Jet, BOUND_PIECES};
-use super::junction::transition;
+use super::junction::{corner_ceiling, transition};
 use super::source_map;
 use super::tolerance::{JOINT_D1_EPS, JOINT_D2_EPS, MIN_LENGTH};
 use super::{line_limits, max_bounds, PathBlock, Segment};
@@ -72,8 +72,10 @@ pub(super) struct Span {
     /// the transition before it, None where it joins its predecessor (junction.rs bounds its
     /// speed at the corner after it by what it can reach from there).
     pub(super) entry: Option<f64>,
-    /// Bound on its speed where it ends: 0 where a stop follows it (known to the last span
-    /// before a stop, `flush_to_stop`), None otherwise.
+    /// Its speed where it ends, once the span after it is known (set for its junction): 0 where
+    /// a stop follows it, else the ceiling of the transition to that span as its search starts
+    /// (junction.rs `corner_ceiling`: an estimate, the search may take a faster shorter cut);
+    /// None where it joins that span with equal derivatives.
     #[serde(skip)]
     pub(super) exit: Option<f64>,
 }
@@ -147,6 +149,13 @@ impl Span {
     }
 }
 
+/// Whether `after` continues `span` with equal first and second derivatives (no transition).
+fn joined(span: &Span, after: &Span) -> bool {
+    let a = jet_at(&span.piece, span.piece.length());
+    let b = jet_at(&after.piece, 0.0);
+    norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS
+}
+
 /// The programmed geometry of `moves` (one move, or moves that continue one line) as one.
 pub(super) fn programmed(moves: &[Move]) -> Source {
     match moves {
@@ -181,10 +190,9 @@ pub struct SmoothBuilder {
     chain_sigma: f64,
     /// The limits of the chain's only piece, while it has one (computed when it was added).
     chain_single: Option<CurveLimits>,
-    /// While the builder flushes to a stop (`flush_to_stop`), the last span stage 1 gave, which
-    /// waits for the next one (its junction) or for the stop (it ends there).
-    #[serde(skip)]
-    to_stop: Option<Option<Span>>,
+    /// The last span stage 1 gave, waiting for the next one or a stop (its exit) before its
+    /// junction with the held span.
+    waiting: Option<Span>,
 }
 
 impl SmoothBuilder {
@@ -192,7 +200,7 @@ impl SmoothBuilder {
     pub fn check_state(&self) -> Result<(), String> {
         use super::check::{one_piece, pieces, programmed};
         self.run.iter().try_for_each(programmed)?;
-        if let Some(s) = &self.held {
+        for s in self.held.iter().chain(&self.waiting) {
             one_piece(&s.piece)?;
             [s.first, s.last]
                 .iter()
@@ -216,7 +224,7 @@ impl SmoothBuilder {
             chain_straight: true,
             chain_sigma: 1.0,
             chain_single: None,
-            to_stop: None,
+            waiting: None,
         }
     }
 
@@ -241,29 +249,26 @@ impl SmoothBuilder {
         self.flush_to_stop(m, out);
     }
 
-    /// Stages 1 and 2 up to a stop: the last span's junction knows that it ends at rest
-    /// (its exit, a bound on the transition before it).
+    /// Stages 1 and 2 up to a stop: the waiting span ends at rest.
     fn flush_to_stop(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
-        self.to_stop = Some(None);
         self.flush_run(false, m, out);
-        if let Some(Some(mut last)) = self.to_stop.take() {
+        if let Some(mut last) = self.waiting.take() {
             last.exit = Some(0.0);
             self.join(last, m, out);
         }
         self.flush_held(m, out);
     }
 
-    /// Stage 2 for the span stage 1 gives: joined to the held span now, or, while flushing to a
-    /// stop, once the next one comes (the last waits for the stop).
+    /// Stage 2 for the span stage 1 gives: it waits, and the span that waited is joined to the
+    /// held span, knowing its exit.
     pub(super) fn junction(&mut self, next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
-        match &mut self.to_stop {
-            Some(waiting) => {
-                if let Some(span) = waiting.replace(next) {
-                    self.join(span, m, out);
-                }
-            }
-            None => self.join(next, m, out),
+        let Some(mut span) = self.waiting.replace(next) else {
+            return;
+        };
+        if let Some(after) = &self.waiting {
+            span.exit = (!joined(&span, after)).then(|| corner_ceiling(&span, after, m));
         }
+        self.join(span, m, out);
     }
 
     /// Stage 2: join `next` to the held span.
@@ -272,10 +277,7 @@ impl SmoothBuilder {
             self.held = Some(next);
             return;
         };
-        let a = jet_at(&held.piece, held.piece.length());
-        let b = jet_at(&next.piece, 0.0);
-        let joined = norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS;
-        if joined {
+        if joined(&held, &next) {
             self.piece(held.piece, &held.marks, held.last.feed, false, held.own, m, out);
             next.entry = None;
             self.held = Some(next);
