@@ -444,7 +444,7 @@ M30
 /// between the second and third arcs cut all of the second (94 µm), so it followed the first
 /// arc's chain directly and joined it, at that chain's 3.4 mm/s, where its cost had counted on
 /// the second arc's 5.5 mm/s: 0.153 s against 0.124 s. A cut that leaves nothing of the span
-/// before runs no faster than that span's entry (path/junction.rs, `neighbours`).
+/// before runs no faster than that span's entry (path/junction.rs, `Search::speed`).
 #[test]
 fn a_larger_tolerance_does_not_cut_a_whole_arc_into_a_slower_chain() {
     let axes = [
@@ -491,7 +491,7 @@ M30
 /// At 2.71 times the tolerance the transition to the next arc cut 0.23 mm of it, costed at the
 /// 14.9 mm/s the whole arc reaches from rest; the 43 µm it left reaches far less, so the longer
 /// transition started slower: 0.185 s against 0.180 s. A cut is costed no faster than the span
-/// before reaches from its entry over what the cut leaves of it (path/junction.rs, `neighbours`).
+/// before reaches from its entry over what the cut leaves of it (path/junction.rs, `Search::speed`).
 #[test]
 fn a_larger_tolerance_does_not_cut_into_an_arc_still_rising_from_rest() {
     let axes = [
@@ -512,7 +512,7 @@ M30
 /// costed as if the arc ran on at its own 13.9 mm/s after it; it stops at the program's end,
 /// from at most 11.8 mm/s over its length: 1.789 s against 1.745 s. The last span before a stop
 /// is known to end at rest, and a cut is costed no faster than it stops from over what is left
-/// (path/smooth.rs, `flush_to_stop`; path/junction.rs, `neighbours`).
+/// (path/smooth.rs, `SmoothBuilder::stop`; path/junction.rs, `Search::speed`).
 #[test]
 fn a_larger_tolerance_does_not_cut_into_an_arc_that_stops_the_program() {
     let axes = [

@@ -117,21 +117,38 @@ pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: 
 /// An estimate: the search may take a shorter cut, or a stop. 0 at a reversal or a corner too
 /// tight to cut.
 pub(super) fn corner_ceiling(held: &Span, next: &Span, m: &Machine) -> f64 {
+    let Some((w, reach)) = corner(held, next) else {
+        return 0.0;
+    };
+    let d = apex_cut(held.last.tolerance, w, 1.0).min(reach);
+    if d <= MIN_LENGTH {
+        return 0.0;
+    }
+    let feed = held.last.feed.min(next.first.feed);
+    Own::of(&cut_curve(held, next, d, 1.0), feed).ceiling(m)
+}
+
+/// The corner between `held` and `next`: how much it turns, |t_out − t_in|, and its reach, the
+/// longest cut: all that is left of the span before (the transition at its start has cut it
+/// already) and half of the span after (the other half for the corner at its end), over as
+/// many programmed moves as they stand for. None at a reversal.
+fn corner(held: &Span, next: &Span) -> Option<(f64, f64)> {
     let end = jet_at(&held.piece, held.piece.length());
     let start = jet_at(&next.piece, 0.0);
     let (t_in, t_out) = (unit(end.d1), unit(start.d1));
     if dot(t_in, t_out) < REVERSAL_COS {
-        return 0.0;
+        return None;
     }
     let reach = held.piece.length().min(0.5 * next.piece.length());
-    let d = apex_cut(held.last.tolerance, norm(sub(t_out, t_in)), 1.0).min(reach);
-    if d <= MIN_LENGTH {
-        return 0.0;
-    }
+    Some((norm(sub(t_out, t_in)), reach))
+}
+
+/// The transition for cut `d` on both sides of the corner between `held` and `next`, with
+/// parameter speed 1 at both ends: λ is 2·share times the cut.
+fn cut_curve(held: &Span, next: &Span, d: f64, share: f64) -> Hermite {
     let a = jet_at(&held.piece, held.piece.length() - d);
     let b = jet_at(&next.piece, d);
-    let feed = held.last.feed.min(next.first.feed);
-    Own::of(&Hermite::new(a, b, 2.0 * d), feed).ceiling(m)
+    Hermite::new(a, b, 2.0 * share * d)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides and the curve, or None
@@ -141,18 +158,8 @@ pub(super) fn transition(
     next: &mut Span,
     m: &Machine,
 ) -> Option<(f64, f64, Hermite, CurveLimits)> {
-    let end = jet_at(&held.piece, held.piece.length());
-    let start = jet_at(&next.piece, 0.0);
-    let (t_in, t_out) = (unit(end.d1), unit(start.d1));
-    if dot(t_in, t_out) < REVERSAL_COS {
-        return None;
-    }
+    let (w, reach) = corner(held, next)?;
     let tol = held.last.tolerance;
-    let w = norm(sub(t_out, t_in));
-    // All that is left of the span before (the transition at its start has cut it already) and
-    // half of the span after (the other half for the corner at its end), over as many
-    // programmed moves as they stand for.
-    let reach = held.piece.length().min(0.5 * next.piece.length());
     // Two lines: the largest deviation is at the apex, in closed form (`apex_share`).
     let lines = matches!(
         (held.piece.curve, next.piece.curve),
@@ -312,10 +319,7 @@ impl Search<'_> {
         if d.is_nan() || d <= MIN_LENGTH {
             return None;
         }
-        let a = jet_at(&self.held.piece, self.held.piece.length() - d);
-        let b = jet_at(&self.next.piece, d);
-        // Parameter speed 1 at both ends: λ is 2·share times the cut.
-        Some((d, Hermite::new(a, b, 2.0 * share * d)))
+        Some((d, cut_curve(self.held, self.next, d, share)))
     }
 
     fn within(&self, d: f64, h: &Hermite) -> bool {

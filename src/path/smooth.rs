@@ -236,7 +236,7 @@ impl SmoothBuilder {
                     self.flush_run(true, m, out);
                 }
             } else if last.exact || mv.exact {
-                self.flush_to_stop(m, out);
+                self.stop(m, out);
             } else {
                 self.flush_run(false, m, out);
             }
@@ -244,13 +244,9 @@ impl SmoothBuilder {
         self.run.push(mv);
     }
 
-    /// Stop at the end of everything received (dwell, M0, program end).
+    /// Stop at the end of everything received (dwell, M0, program end, an exact-stop move):
+    /// the waiting span ends at rest.
     pub fn stop(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
-        self.flush_to_stop(m, out);
-    }
-
-    /// Stages 1 and 2 up to a stop: the waiting span ends at rest.
-    fn flush_to_stop(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
         self.flush_run(false, m, out);
         if let Some(mut last) = self.waiting.take() {
             last.exit = Some(0.0);
