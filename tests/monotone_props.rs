@@ -577,3 +577,25 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.03423, 0.09762]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 4): at 3.9 times the tolerance the fit took the
+/// program's first two lines, which rise 0.17 mm in Z (jerk limit 1769 mm/s³), as one curve.
+/// Its bend starves the Z jerk: from rest it rises too slowly to use its top speed, 33 mm/s,
+/// and the lines, each from rest to rest, are faster: 0.256 s against 0.246 s. A curve fitted
+/// from rest is compared with its moves from rest to rest on its own ramps (path/fit.rs,
+/// `slower_from_rest`).
+#[test]
+fn a_larger_tolerance_does_not_fit_lines_from_rest_as_a_curve_that_cannot_rise() {
+    let axes = [
+        [4339.98, 908.16, 203197.0],
+        [9057.96, 4173.47, 306303693.6],
+        [5461.15, 2375.68, 1769.08],
+    ];
+    let program = "G21 G90 G17 G64 F5701.5
+G1 X0.6775 Y0.0001 Z0.0321
+G1 X1.2515 Y0.0001 Z0.2029
+G3 X1.2537 Y0.0040 Z0.2031 I-0.0000 J0.0026
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.01912, 0.07467]);
+}

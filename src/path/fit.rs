@@ -5,7 +5,8 @@
 //! control points — hence the whole span — lie within `SPAN_SHARE` of the tolerance of its
 //! programmed chords and it is not surely slower than its moves (`slower_than_stops`) nor, over a
 //! single line, slower than that line run between the transitions at its corners
-//! (`slower_than_its_line`); otherwise it is split at a vertex, down to the programmed line.
+//! (`slower_than_its_line`), nor, fitted from rest, slower from rest to rest than its moves
+//! (`slower_from_rest`); otherwise it is split at a vertex, down to the programmed line.
 //!
 //! Moves that continue one line (`continues`: a G64 Q line split at its merged vertices for the
 //! blocks it reports, CAM output that splits a straight cut) are one line here: their inner
@@ -20,7 +21,8 @@ use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
 use super::PathBlock;
 use super::{constant_speed_limit, line_limits};
 use crate::config::Machine;
-use crate::feed::{scurve7, BlockRequest, FeedLaw};
+use crate::feed::bands::Banded;
+use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, ProfileKind};
 use crate::geometry::{add, cross, distance_to_segment, dot, norm, scale, sub, unit, Line, Source};
 use crate::Vec3;
 
@@ -234,10 +236,14 @@ impl SmoothBuilder {
             piece_limits(&cells, first.feed / h.speed_bound().max(1.0), m)
         });
         // Kept unless it is surely slower than the moves it replaces, or than one line between
-        // its corners.
+        // its corners, or, fitted from rest (nothing before it since a stop), slower from rest to
+        // rest than the moves each from rest to rest.
+        let from_rest = span.from == 0 && self.at_rest();
         let keep = |own: &CurveLimits| {
-            !slower_than_stops(h.length(), own.class, moves, m)
-                && !slower_than_its_line(span, h.length(), own.class, m)
+            let slower = slower_than_stops(h.length(), own.class, moves, m)
+                || slower_than_its_line(span, h.length(), own.class, m)
+                || from_rest && slower_from_rest(h.length(), own, moves, m);
+            !slower
         };
         if let Some(own) = fitted.filter(keep) {
             let mut span = Span::fitted(Piece::whole(Curve::Hermite(h), first.line), moves);
@@ -281,6 +287,20 @@ fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool
 fn slower_than_stops(length: f64, class: f64, moves: &[Move], m: &Machine) -> bool {
     let stops: f64 = moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum();
     length > class * stops
+}
+
+/// Whether a curve of `length` within its limits `own` is slower from rest to rest than
+/// `moves` each from rest to rest (as `slower_than_stops`, with the curve's ramps: a curve over
+/// a bend in a low-jerk axis may not reach its top speed in its length).
+fn slower_from_rest(length: f64, own: &CurveLimits, moves: &[Move], m: &Machine) -> bool {
+    let b = Banded {
+        kind: ProfileKind::Scurve7,
+        top: &own.limits,
+        bands: &own.bands,
+    };
+    let curve = scurve7_banded::plan_time(&b, length, 0.0, 0.0, own.class).0;
+    let stops: f64 = moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum();
+    curve > stops
 }
 
 /// Time of the line of `mv` as one block from `v_in` to `v_out`, each at most its own speed

@@ -255,6 +255,11 @@ impl SmoothBuilder {
         self.flush_held(m, out);
     }
 
+    /// Whether the next span stage 1 gives starts at rest: nothing has come since a stop.
+    pub(super) fn at_rest(&self) -> bool {
+        self.held.is_none() && self.waiting.is_none()
+    }
+
     /// Stage 2 for the span stage 1 gives: it waits, and the span that waited is joined to the
     /// held span, knowing its exit.
     pub(super) fn junction(&mut self, next: Span, m: &Machine, out: &mut Vec<PathBlock>) {
