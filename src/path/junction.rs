@@ -2,22 +2,25 @@
 //! that do not meet with equal first and second derivatives — a quintic Hermite (hermite.rs;
 //! eq. 45–52 between two lines) from a cut d on each side, d from eq. 52's apex at the tolerance,
 //! shrunk along a grid of cuts until the transition keeps the tolerance, then halved while that
-//! costs less time at the corner (`local_cost`) and refined about the best, or None (a stop at the
-//! corner, where that costs less). The tolerance only admits cuts (the grid hangs from the
-//! geometry); the time picks among them, so a larger tolerance seldom picks a slower one.
+//! costs less time at the corner (`local_cost`, junction/cost.rs) and refined about the best, or
+//! None (a stop at the corner, where that costs less). The tolerance only admits cuts (the grid
+//! hangs from the geometry); the time picks among them, so a larger tolerance seldom picks a
+//! slower one.
+
+mod cost;
 
 use super::arc::TopSpeeds;
-use super::chain::{piece_limits, piece_limits_known, piece_speed, piece_speed_ceiling, Curve, CurveLimits};
+use super::chain::{piece_limits_known, piece_speed, piece_speed_ceiling, Curve, CurveLimits};
 use super::hermite::{Hermite, Jet, BOUND_PIECES};
-use super::smooth::{jet_at, joined_loss, Move, Span};
-use super::tolerance::{MIN_LENGTH, RAMP_FIT, RAMP_STEPS, REVERSAL_COS};
-use super::{constant_speed_limit, line_limits, slowest_axis};
+use super::slowest_axis;
+use super::smooth::{jet_at, Move, Span};
+use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
 use crate::config::Machine;
-use crate::feed::bands::{Banded, Bands};
 use crate::feed::scurve7_banded::Rise;
-use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
+use crate::feed::{scurve7, BlockRequest, FeedLaw};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
 use crate::Vec3;
+use cost::{joined_sides, local_cost, side, End, Side};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -468,160 +471,6 @@ const SAVING: f64 = 1e-6;
 const PRUNE_MARGIN: f64 = 1e-2;
 /// Halvings of an admitted cut tried where a stop costs less than it, before the corner stops.
 const STOP_TRIES: u32 = 4;
-
-/// A neighbour's own speed (its class: `piece_limits` on curves, the feed and eq. 11 on lines),
-/// the limits and bands it ramps within, and its length.
-struct Side {
-    v: f64,
-    top: Limits,
-    bands: Bands,
-    length: f64,
-    curved: bool,
-    feed: f64,
-    /// The speed its span ends at, where known (the span after, before a stop).
-    end: Option<f64>,
-}
-
-/// A side's speed where its span begins (the span before) or ends (the span after), where
-/// known, and a copy of the limits it ramps within.
-struct End {
-    v: f64,
-    top: Limits,
-    bands: Bands,
-}
-
-impl End {
-    fn banded(&self) -> Banded<'_> {
-        Banded {
-            kind: ProfileKind::Scurve7,
-            top: &self.top,
-            bands: &self.bands,
-        }
-    }
-}
-
-/// The side of a junction that `span` is (its limits computed once, kept on the span).
-fn side(span: &mut Span, feed: f64, m: &Machine) -> Side {
-    let piece = span.piece;
-    let sigma = piece.curve.speed_bound().max(1.0);
-    let (v, top, bands) = match piece.curve {
-        Curve::Line(line) => {
-            let v = constant_speed_limit(&piece.curve.derivative_bounds(), m).min(feed / sigma);
-            (v, line_limits(line.direction(), m), Bands::default())
-        }
-        _ => {
-            let l = span.own.get_or_insert_with(|| {
-                let mut cells = Vec::with_capacity(BOUND_PIECES);
-                piece.curve.cells(|c| cells.push(c));
-                piece_limits(&cells, feed / sigma, m)
-            });
-            (l.class, l.limits, l.bands.clone())
-        }
-    };
-    Side {
-        v,
-        top,
-        bands,
-        length: piece.length(),
-        curved: !matches!(piece.curve, Curve::Line(_)),
-        feed,
-        end: None,
-    }
-}
-
-/// Where the faster neighbour would join one chain with the slower (smooth.rs, `joined_loss`:
-/// two curves of one feed), it runs at the slower one's speed: what a cut replaces of it then
-/// runs no faster than the transition.
-fn joined_sides(sides: &mut [Side; 2]) {
-    let (slow, fast) = if sides[0].v <= sides[1].v { (0, 1) } else { (1, 0) };
-    let (s, f) = (&sides[slow], &sides[fast]);
-    if s.curved && f.curved && s.feed == f.feed && f.v > s.v {
-        let ramps = ((&f.top, &f.bands), (&s.top, &s.bands));
-        if joined_loss(0.0, (s.length, s.v), (f.length, f.v), ramps.0, ramps.1).is_some() {
-            sides[fast].v = sides[slow].v;
-        }
-    }
-}
-
-/// Time a transition of cut `d` (on both sides) and `length` at speed `v` adds to the corner: its
-/// own run, less the stretches of the neighbours it replaces at their own speeds, plus what each
-/// neighbour loses to the ramp between `v` and its own speed (the fastest within its limits and
-/// bands, `scurve7_banded`, as far as its length reaches): T − D/v_side over the ramp. A
-/// neighbour whose end speed is known (the last span before a stop) counts its block from `v`
-/// to that end over what the cut leaves of it instead (less its whole length at its speed, as
-/// the others): it does not run on at its own speed.
-fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
-    let mut cost = length / v.max(f64::MIN_POSITIVE);
-    for s in sides {
-        let v_side = s.v.max(f64::MIN_POSITIVE);
-        let banded = Banded {
-            kind: ProfileKind::Scurve7,
-            top: &s.top,
-            bands: &s.bands,
-        };
-        if let Some(v_end) = s.end {
-            // Its block from v to its end over what is left of it, less the same constant.
-            let rest = (s.length - d).max(0.0);
-            let (t, _) = scurve7_banded::plan_time(&banded, rest, v.clamp(0.0, v_side), v_end, v_side);
-            cost += t - s.length / v_side;
-            continue;
-        }
-        cost -= d / v_side;
-        if v < v_side {
-            let (v0, rest) = (v.max(0.0), (s.length - d).max(0.0));
-            let (t, x) = if s.bands.levels().is_empty() {
-                // One band: scurve7's closed forms.
-                scurve7::rise_within(v0, v_side, rest, &s.top)
-            } else {
-                // Every ramp here rises from v (one forward envelope).
-                ramp_within(&scurve7_banded::Rise::from(&banded, v0), v_side, rest)
-            };
-            cost += t - x / v_side;
-        }
-    }
-    cost
-}
-
-/// Time and distance of `rise` up to `v_side`, or over `rest` where it ends before (the side is
-/// shorter than the ramp): the exit speed whose distance is `rest` to `RAMP_FIT` of it, by the
-/// Illinois regula falsi between the rise's start and `v_side` (a cost to compare cuts by, not a
-/// speed to plan with).
-fn ramp_within(rise: &scurve7_banded::Rise, v_side: f64, rest: f64) -> (f64, f64) {
-    let (t_top, x_top) = rise.time_distance(v_side);
-    if x_top <= rest {
-        return (t_top, x_top);
-    }
-    let (mut lo, mut g_lo) = (rise.lo(), -rest);
-    let (mut hi, mut g_hi) = (v_side, x_top - rest);
-    let mut at = (0.0, 0.0);
-    let mut last_lo = None;
-    for _ in 0..RAMP_STEPS {
-        let mut w = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-        if !(w > lo && w < hi) {
-            w = 0.5 * (lo + hi);
-        }
-        at = rise.time_distance(w);
-        let g = at.1 - rest;
-        if g.abs() <= RAMP_FIT * rest {
-            break;
-        }
-        // Illinois: the end that stays twice has its value halved.
-        if g < 0.0 {
-            (lo, g_lo) = (w, g);
-            if last_lo == Some(true) {
-                g_hi *= 0.5;
-            }
-            last_lo = Some(true);
-        } else {
-            (hi, g_hi) = (w, g);
-            if last_lo == Some(false) {
-                g_lo *= 0.5;
-            }
-            last_lo = Some(false);
-        }
-    }
-    at
-}
 
 /// Every point of `h` within the tolerance of one of the programmed moves it replaces (`before`
 /// and `after` the corner, in path order): samples every λ/N, each at most tolerance −

@@ -1,0 +1,262 @@
+//! The cases the random search of tests/monotone_props.rs found, kept as they were found (the
+//! machine as a user writes it in a machine file, the program as printed): each lengthened a
+//! program for a larger tolerance or a higher limit before the change its comment names, and
+//! fails without it.
+
+// Targets other than the library share its dependency list; the lint guards the library.
+#![allow(unused_crate_dependencies)]
+
+use cnc_motion::config::Machine;
+use cnc_motion::engine::Engine;
+use std::fmt::Write;
+use std::sync::Arc;
+
+/// Relative slack of "never longer", as in tests/monotone_props.rs.
+const SLACK: f64 = 1e-3;
+
+/// Motion time of the program on the machine (s), run to its end.
+fn time(text: &str, m: &Machine) -> f64 {
+    let mut e = Engine::new(Arc::from(text), "p.ngc", m).expect("valid program");
+    while !e.finished() {
+        e.step().expect("no runtime error");
+    }
+    e.motion_time()
+}
+
+/// The machine of a found case: its tolerance (mm) and each axis's velocity (mm/min),
+/// acceleration (mm/s²) and jerk (mm/s³), read from a machine file as a user would write it.
+fn found_machine(tolerance: f64, axes: [[f64; 3]; 3]) -> Machine {
+    let mut text = format!("max_feed_mm_min = 60000\npath_tolerance_mm = {tolerance}\n");
+    for (name, [v, a, j]) in ["x", "y", "z"].iter().zip(axes) {
+        write!(
+            text,
+            "[axis.{name}]\nmax_velocity_mm_min = {v}\nmax_acceleration_mm_s2 = {a}\nmax_jerk_mm_s3 = {j}\n"
+        )
+        .unwrap();
+    }
+    Machine::from_toml(&text, "m.toml").expect("a valid machine")
+}
+
+/// A found case: `program` on the machine of `axes` runs no longer at the larger tolerance
+/// (mm) than at the smaller.
+fn assert_larger_tolerance_not_longer(program: &str, axes: [[f64; 3]; 3], [small, large]: [f64; 2]) {
+    let low = time(program, &found_machine(small, axes));
+    let high = time(program, &found_machine(large, axes));
+    assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
+}
+
+/// A case `tolerance_failure_rate` found (seed 2): at 3.65 times the tolerance the fit took a
+/// 2.46 mm line and the 6 µm hook after it as one curve, whose top speed is the hook's, 11 mm/s
+/// over the whole line (the line alone runs at 109 mm/s): 1.816 s against 1.600 s. A curve surely
+/// slower than its moves run from rest to rest is not kept (path/fit.rs, `slower_than_stops`).
+#[test]
+fn a_larger_tolerance_does_not_fit_a_long_line_and_a_hook_as_one_slow_curve() {
+    let axes = [
+        [6323.97, 2276.54, 4874712.9],
+        [12570.66, 3050.28, 384783402.3],
+        [2746.16, 518.16, 1219.05],
+    ];
+    let program = "G21 G90 G17 G64 F7663.7
+G2 X-0.0369 Y-0.1660 Z0.0000 I0.0000 J-0.0871
+G2 X0.2310 Y0.0461 Z0.0000 I0.0884 J0.1636
+G3 X0.2228 Y0.0486 Z0.0000 I-0.0078 J-0.0110
+G2 X-8.7309 Y26.9308 Z0.0000 I1.9147 J15.5699
+G2 X-1.2447 Y18.1740 Z-5.5482 I5.1668 J-3.1612
+G2 X-1.8202 Y18.1241 Z-5.3754 I-0.3666 J0.8844
+G1 X-1.8888 Y18.0545 Z-5.3979
+G1 X-1.7433 Y18.1162 Z-5.3522
+G1 X0.6270 Y18.7605 Z-5.4563
+G1 X0.6327 Y18.7606 Z-5.4566
+G1 X0.6348 Y18.7606 Z-5.4570
+G2 X0.7215 Y18.6502 Z-5.4570 I0.0008 J-0.0886
+G3 X0.7719 Y18.6516 Z-5.4570 I0.0254 J-0.0079
+G2 X1.3692 Y18.7338 Z-5.4570 I0.3193 J-0.1089
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0741, 0.2706]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 3): at 3.12 times the tolerance the fit took the
+/// 4 µm line between two nearly straight corners as a curve of its own, bent by the curvature of
+/// the circles through its neighbours, slower than the transitions at its two corners: 0.665 s
+/// against 0.644 s. A curve over one line that runs slower than the line between its corners'
+/// transitions is not kept (path/fit.rs, `slower_than_its_line`).
+#[test]
+fn a_larger_tolerance_does_not_bend_a_short_line_slower_than_its_corners() {
+    let axes = [
+        [1978.57, 3162.15, 2881.25],
+        [1790.74, 1921.02, 232963114.07],
+        [11607.73, 338.19, 11086.26],
+    ];
+    let program = "G21 G90 G17 G64 F1548.8
+G3 X0.4249 Y0.7754 Z0.0000 I0.0000 J0.5041
+G1 X0.4225 Y0.7792 Z-0.0004
+G1 X0.4191 Y0.7835 Z0.0005
+G1 X0.4144 Y0.7935 Z0.0003
+G1 X-0.8744 Y3.5155 Z-0.3989
+G2 X-0.8648 Y3.5186 Z-0.3965 I0.0046 J0.0022
+G1 X-0.8642 Y3.5153 Z-0.3960
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0010108, 0.0031508]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 5): at 2.59 times the tolerance the transition
+/// between the second and third arcs cut all of the second (94 µm), so it followed the first
+/// arc's chain directly and joined it, at that chain's 3.4 mm/s, where its cost had counted on
+/// the second arc's 5.5 mm/s: 0.153 s against 0.124 s. A cut that leaves nothing of the span
+/// before runs no faster than that span's entry (path/junction.rs, `Search::speed`).
+#[test]
+fn a_larger_tolerance_does_not_cut_a_whole_arc_into_a_slower_chain() {
+    let axes = [
+        [3529.33, 1025.49, 1551723.48],
+        [11088.40, 3109.23, 47273685.82],
+        [4270.40, 238.98, 3461.02],
+    ];
+    let program = "G21 G90 G17 G64 F429.3
+G3 X0.0003 Y0.0225 Z0.0000 I0.0018 J0.0112
+G2 X-0.0103 Y0.0832 Z0.0000 I-0.0043 J0.0305
+G2 X0.3693 Y-0.0638 Z-0.0635 I0.0760 J-0.3674
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.00985, 0.02548]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 2): at 2.84 times the tolerance the fit took the
+/// 0.24 mm line between two corners as a curve of its own at 8.0 mm/s. Its corners' transitions
+/// ran 6.0 and 2.4 mm/s, so it was not slower than them, but the line speeds up between them
+/// (its own speed is 27.6 mm/s): 0.243 s against 0.233 s. A curve over one line is compared
+/// with the line's block from one corner's speed to the other's (path/fit.rs,
+/// `slower_than_its_line`).
+#[test]
+fn a_larger_tolerance_does_not_bend_a_line_slower_than_it_runs_between_its_corners() {
+    let axes = [
+        [1622.86, 1737.40, 45870.97],
+        [9985.44, 4403.91, 191348.16],
+        [2072.26, 987.10, 98596.67],
+    ];
+    let program = "G21 G90 G17 G64 F1731.7
+G1 X0.0010 Y0.0000 Z-0.0002
+G1 X0.0843 Y-0.0112 Z-0.0108
+G1 X0.1330 Y-0.0080 Z-0.0058
+G1 X0.3667 Y0.0071 Z0.0401
+G3 X0.3836 Y0.0278 Z0.0401 I-0.0017 J0.0187
+G1 X0.4450 Y0.0134 Z0.0358
+G2 X1.7413 Y-0.6924 Z0.2818 I-0.6312 J-2.7027
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.005841, 0.016601]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 3): the program starts at rest on a 0.27 mm arc.
+/// At 2.71 times the tolerance the transition to the next arc cut 0.23 mm of it, costed at the
+/// 14.9 mm/s the whole arc reaches from rest; the 43 µm it left reaches far less, so the longer
+/// transition started slower: 0.185 s against 0.180 s. A cut is costed no faster than the span
+/// before reaches from its entry over what the cut leaves of it (path/junction.rs, `Search::speed`).
+#[test]
+fn a_larger_tolerance_does_not_cut_into_an_arc_still_rising_from_rest() {
+    let axes = [
+        [5485.22, 807.23, 474706292.75],
+        [2403.17, 1489.44, 86177967.64],
+        [12550.48, 207.04, 26030.45],
+    ];
+    let program = "G21 G90 G17 G64 F3975.7
+G3 X0.2386 Y0.1112 Z0.0000 I-0.0001 J0.3117
+G3 X1.9439 Y3.6348 Z0.9534 I-6.1064 J5.1296
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.01035, 0.02809]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 5): the program ends on a 2.84 mm arc. At 3.81
+/// times the tolerance the transition from the 33.7 mm line before it cut half of it, 1.42 mm,
+/// costed as if the arc ran on at its own 13.9 mm/s after it; it stops at the program's end,
+/// from at most 11.8 mm/s over its length: 1.789 s against 1.745 s. The last span before a stop
+/// is known to end at rest, and a cut is costed no faster than it stops from over what is left
+/// (path/smooth.rs, `SmoothBuilder::stop`; path/junction.rs, `Search::speed`).
+#[test]
+fn a_larger_tolerance_does_not_cut_into_an_arc_that_stops_the_program() {
+    let axes = [
+        [4185.95, 480.23, 1346.67],
+        [5781.84, 3690.82, 184905454.69],
+        [1827.93, 3745.09, 307299079.57],
+    ];
+    let program = "G21 G90 G17 G64 F1823.7
+G3 X0.0010 Y0.0005 Z0.0001 I0.0000 J0.0014
+G1 X22.4094 Y24.6497 Z5.1824
+G3 X21.4055 Y26.8339 Z5.1824 I-1.2268 J0.7590
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.04813, 0.18342]);
+}
+
+/// A case `limit_failure_rate` found (seed 4): two lines, the second (1.25 mm) the last before
+/// the program's end. At 2.51 times every axis's velocity limit the corner stopped instead of
+/// taking its transition: its cost counted the second line as running on at 35 mm/s after a
+/// stop, the most it stops from over its whole length, where from rest it reaches far less:
+/// 0.250 s against 0.240 s. The side that ends at a stop is costed by its block from the
+/// transition's speed to rest over what is left of it (path/junction/cost.rs, `local_cost`).
+#[test]
+fn a_higher_velocity_limit_does_not_stop_before_the_last_line() {
+    let program = "G21 G90 G17 G64 F8399.1
+G1 X1.5137 Y-5.0667 Z0.0042
+G1 X1.8664 Y-6.2505 Z-0.1708
+M30
+";
+    let (a, j) = ([319.32, 2626.14, 3255.83], [581931443.67, 524119117.64, 3940.46]);
+    let axes = |v: [f64; 3]| [0, 1, 2].map(|k| [v[k], a[k], j[k]]);
+    let low = time(
+        program,
+        &found_machine(0.08683, axes([1885.04, 3741.59, 1789.42])),
+    );
+    let high = time(
+        program,
+        &found_machine(0.08683, axes([4735.22, 9398.87, 4495.02])),
+    );
+    assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
+}
+
+/// A case `tolerance_failure_rate` found (seed 3): a 12.2 mm line, a 4.5 mm arc and a tight
+/// 0.12 mm arc. At 2.85 times the tolerance the corner between the line and the first arc took
+/// a longer cut (1.58 mm instead of 1.33), costed as if the arc ran on at its own 51 mm/s; it
+/// slows to 2 mm/s for the corner at its end: 0.765 s against 0.730 s. A span's junction waits
+/// for the span after it, and the ceiling of the transition there bounds how fast it is counted
+/// at the corner before (path/smooth.rs, `junction`; path/junction.rs, `corner_ceiling`).
+#[test]
+fn a_larger_tolerance_does_not_cut_into_an_arc_that_slows_for_its_next_corner() {
+    let axes = [
+        [4993.55, 463.09, 647225283.68],
+        [4150.38, 586.30, 3069.45],
+        [2534.01, 3283.39, 18032.83],
+    ];
+    let program = "G21 G90 G17 G64 F10711.0
+G1 X1.4887 Y-0.0003 Z0.3624
+G1 X13.6824 Y-0.0025 Z-0.2426
+G3 X17.7120 Y1.6461 Z-0.2426 I0.0010 J5.7464
+G3 X17.7296 Y1.7554 Z-0.2426 I-0.0655 J0.0666
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.03423, 0.09762]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 4): at 3.9 times the tolerance the fit took the
+/// program's first two lines, which rise 0.17 mm in Z (jerk limit 1769 mm/s³), as one curve.
+/// Its bend starves the Z jerk: from rest it rises too slowly to use its top speed, 33 mm/s,
+/// and the lines, each from rest to rest, are faster: 0.256 s against 0.246 s. A curve fitted
+/// from rest is compared with its moves from rest to rest on its own ramps (path/fit.rs,
+/// `slower_from_rest`).
+#[test]
+fn a_larger_tolerance_does_not_fit_lines_from_rest_as_a_curve_that_cannot_rise() {
+    let axes = [
+        [4339.98, 908.16, 203197.0],
+        [9057.96, 4173.47, 306303693.6],
+        [5461.15, 2375.68, 1769.08],
+    ];
+    let program = "G21 G90 G17 G64 F5701.5
+G1 X0.6775 Y0.0001 Z0.0321
+G1 X1.2515 Y0.0001 Z0.2029
+G3 X1.2537 Y0.0040 Z0.2031 I-0.0000 J0.0026
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.01912, 0.07467]);
+}
