@@ -100,13 +100,16 @@ test-python: fmu venv-full system-deps
 # Fresh seeds, more cases: every property test with a new random seed (printed, so a failure can
 # be replayed with PROPTEST_RNG_SEED=...; unset, tests/monotone_props.rs keeps CI's), then the fuzz
 # harness of tests/fuzz.rs with FUZZ_CASES mutated programs and machine files on a new seed
-# (printed, so a failure can be replayed with CNC_FUZZ_SEED=...).
+# (printed, so a failure can be replayed with CNC_FUZZ_SEED=...). Every part runs whatever an
+# earlier one found (the monotone-limit property fails now and then on fresh seeds, README), and
+# the target fails if any did.
 FUZZ_CASES ?= 50000
 fuzz:
-	seed=$$(od -An -N4 -tu4 /dev/urandom | tr -d ' '); echo "PROPTEST_RNG_SEED=$$seed"; \
-		PROPTEST_RNG_SEED=$$seed $(CARGO) test --workspace --release
-	CNC_FUZZ_SEED=$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ') CNC_FUZZ_CASES=$(FUZZ_CASES) \
-		$(CARGO) test --release --test fuzz -- --nocapture
+	rc=0; seed=$$(od -An -N4 -tu4 /dev/urandom | tr -d ' '); echo "PROPTEST_RNG_SEED=$$seed"; \
+		PROPTEST_RNG_SEED=$$seed $(CARGO) test --workspace --release --no-fail-fast || rc=$$?; \
+		CNC_FUZZ_SEED=$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ') CNC_FUZZ_CASES=$(FUZZ_CASES) \
+		$(CARGO) test --release --test fuzz -- --nocapture || rc=$$?; \
+		exit $$rc
 
 # The FMU benchmark loads target/release/libcnc_motion.so: build the libraries first.
 bench:
