@@ -88,9 +88,10 @@ impl Budget<'_> {
     }
 
     /// At each speed v of `v`, the largest tangential acceleration that leaves the jerk at least
-    /// j (`j`): min_i (J_i − |d3_i|·v³ − |d1_i|·j)/(3|d2_i|·v) over the cells (at most `a_cap`).
+    /// j (`j`): min_i (J_i − |d3_i|·v³ − |d1_i|·j)/(3|d2_i|·v) over the cells, from the jerk
+    /// limits alone (not capped by `a_cap`, which comes from the acceleration limits).
     pub fn acceleration_leaving<const N: usize>(&self, v: &[f64; N], j: &[f64; N]) -> [f64; N] {
-        let mut a_c = [self.a_cap; N];
+        let mut a_c = [f64::INFINITY; N];
         self.each_moving(|ax, [d1, d2, d3]| {
             for k in 0..N {
                 let (v, j) = (v[k], j[k]);
