@@ -240,9 +240,10 @@ impl SmoothBuilder {
         // rest than the moves each from rest to rest.
         let from_rest = span.from == 0 && self.at_rest();
         let keep = |own: &CurveLimits| {
-            let slower = slower_than_stops(h.length(), own.class, moves, m)
+            let stops = stops_time(moves, m);
+            let slower = slower_than_stops(h.length(), own.class, stops)
                 || slower_than_its_line(span, h.length(), own.class, m)
-                || from_rest && slower_from_rest(h.length(), own, moves, m);
+                || from_rest && slower_from_rest(h.length(), own, stops);
             !slower
         };
         if let Some(own) = fitted.filter(keep) {
@@ -280,26 +281,30 @@ fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool
     length > class * line
 }
 
-/// Whether a curve of `length` and top speed `class` is surely slower than `moves`: its time at
-/// that speed above theirs each run from rest to rest at its feed within its line's limits (a
-/// bound on the lines' time, corners and all). A curve over a long move and a short hook runs
-/// the whole move at the hook's speed (2.46 mm at 11 mm/s, where the line alone runs at 109).
-fn slower_than_stops(length: f64, class: f64, moves: &[Move], m: &Machine) -> bool {
-    let stops: f64 = moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum();
+/// Time of `moves` each run from rest to rest at its feed within its line's limits: a bound on
+/// the lines' time, corners and all.
+fn stops_time(moves: &[Move], m: &Machine) -> f64 {
+    moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum()
+}
+
+/// Whether a curve of `length` and top speed `class` is surely slower than its moves, whose
+/// `stops_time` is `stops`: its time at that speed above theirs. A curve over a long move and a
+/// short hook runs the whole move at the hook's speed (2.46 mm at 11 mm/s, where the line alone
+/// runs at 109).
+fn slower_than_stops(length: f64, class: f64, stops: f64) -> bool {
     length > class * stops
 }
 
-/// Whether a curve of `length` within its limits `own` is slower from rest to rest than
-/// `moves` each from rest to rest (as `slower_than_stops`, with the curve's ramps: a curve over
-/// a bend in a low-jerk axis may not reach its top speed in its length).
-fn slower_from_rest(length: f64, own: &CurveLimits, moves: &[Move], m: &Machine) -> bool {
+/// Whether a curve of `length` within its limits `own` is slower from rest to rest than its
+/// moves, whose `stops_time` is `stops` (as `slower_than_stops`, with the curve's ramps: a curve
+/// over a bend in a low-jerk axis may not reach its top speed in its length).
+fn slower_from_rest(length: f64, own: &CurveLimits, stops: f64) -> bool {
     let b = Banded {
         kind: ProfileKind::Scurve7,
         top: &own.limits,
         bands: &own.bands,
     };
     let curve = scurve7_banded::plan_time(&b, length, 0.0, 0.0, own.class).0;
-    let stops: f64 = moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum();
     curve > stops
 }
 
