@@ -172,7 +172,8 @@ fn band_speeds(v_top: f64, v_curve: f64) -> [f64; MAX_BANDS + 1] {
     // Still to be placed, stepping down (on the grid itself it is the grid's level).
     let mut inner_left = inner < v_top;
     let mut speeds = [0.0; MAX_BANDS + 1];
-    let mut next = grid_at_or_above(v_top) / BAND_GRID;
+    let above = grid_at_or_above(v_top);
+    let mut next = above / BAND_GRID;
     for g in speeds[..MAX_BANDS].iter_mut().rev() {
         if inner_left && inner > next {
             *g = inner;
@@ -183,16 +184,17 @@ fn band_speeds(v_top: f64, v_curve: f64) -> [f64; MAX_BANDS + 1] {
         *g = next;
         next /= BAND_GRID;
     }
-    speeds[MAX_BANDS] = top_pair_speed(v_top, v_curve);
+    speeds[MAX_BANDS] = top_pair_speed(v_top, v_curve, above);
     speeds
 }
 
-/// Where the top band takes its pair: the first at or above the top of the grid speed, the inner
-/// edge and v_curve (a higher cap leaves it as it was until the top passes it).
-fn top_pair_speed(v_top: f64, v_curve: f64) -> f64 {
+/// Where the top band takes its pair: the first at or above the top of the grid speed `above`
+/// (`grid_at_or_above` of the top), the inner edge and v_curve (a higher cap leaves it as it was
+/// until the top passes it).
+fn top_pair_speed(v_top: f64, v_curve: f64, above: f64) -> f64 {
     let inner = INNER_EDGE * v_curve;
     let inner_above = if inner >= v_top { inner } else { f64::INFINITY };
-    grid_at_or_above(v_top).min(inner_above).min(v_curve).max(v_top)
+    above.min(inner_above).min(v_curve).max(v_top)
 }
 
 /// The smallest grid speed q^n m/s (n whole) at or above v > 0: by multiplying and dividing from
@@ -325,7 +327,8 @@ pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Mach
     let Some(t) = t else {
         return (plain(), speeds);
     };
-    let (a, j) = band_pairs(&t.budget, &[top_pair_speed(t.v_top, t.v_curve)]);
+    let above = grid_at_or_above(t.v_top);
+    let (a, j) = band_pairs(&t.budget, &[top_pair_speed(t.v_top, t.v_curve, above)]);
     if a[0] <= 0.0 || j[0] <= 0.0 {
         (plain(), speeds)
     } else {

@@ -235,8 +235,7 @@ impl SmoothBuilder {
         // Kept unless it is surely slower than the moves it replaces, or than one line between
         // its corners, or, over several moves or fitted from rest (nothing before it since a
         // stop), slower from rest to rest than the moves each from rest to rest.
-        let from_rest = span.from == 0 && self.at_rest();
-        let rest_to_rest = from_rest || moves.len() > 1;
+        let rest_to_rest = moves.len() > 1 || span.from == 0 && self.at_rest();
         let keep = |own: &CurveLimits| {
             let stops = stops_time(moves, m);
             let slower = slower_than_stops(h.length(), own.class, stops)
