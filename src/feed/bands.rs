@@ -66,18 +66,19 @@ impl Bands {
     /// `MAX_BANDS` (the fastest ones). A level's pair (A, J) holds as a pair: more acceleration
     /// may leave less jerk, so a band need not have more of both than the one above it.
     pub fn below(top: &Limits, levels: &[Band]) -> Bands {
-        let mut kept: Vec<Band> = levels
-            .iter()
-            .copied()
-            .filter(|b| {
-                b.v_top > 0.0
-                    && b.v_top < top.v_max
-                    && b.a_max > 0.0
-                    && b.j_max > 0.0
-                    && b.a_max.is_finite()
-                    && b.j_max.is_finite()
-            })
-            .collect();
+        Bands::keep_below(top, levels.to_vec())
+    }
+
+    /// `below`, kept in `levels` itself (no second list).
+    pub fn keep_below(top: &Limits, mut kept: Vec<Band>) -> Bands {
+        kept.retain(|b| {
+            b.v_top > 0.0
+                && b.v_top < top.v_max
+                && b.a_max > 0.0
+                && b.j_max > 0.0
+                && b.a_max.is_finite()
+                && b.j_max.is_finite()
+        });
         // Curves list their levels by increasing speed already (path/arc.rs): no sort then.
         if !kept.windows(2).all(|w| w[0].v_top < w[1].v_top) {
             kept.sort_by(|x, y| x.v_top.total_cmp(&y.v_top));

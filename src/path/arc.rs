@@ -250,14 +250,13 @@ pub fn curve_bands(
     };
     let speeds = band_speeds(v_top, v_curve);
     let (a, j) = band_pairs(&budget, &speeds);
-    let levels: Vec<Band> = (0..MAX_BANDS)
-        .filter(|&k| speeds[k] < v_top)
-        .map(|k| Band {
-            v_top: speeds[k],
-            a_max: a[k],
-            j_max: j[k],
-        })
-        .collect();
+    // Room for every level at once (one allocation, kept by the bands).
+    let mut levels = Vec::with_capacity(MAX_BANDS);
+    levels.extend((0..MAX_BANDS).filter(|&k| speeds[k] < v_top).map(|k| Band {
+        v_top: speeds[k],
+        a_max: a[k],
+        j_max: j[k],
+    }));
     let (a, j) = (a[MAX_BANDS], j[MAX_BANDS]);
     let limits = Limits {
         v_max: v_top,
@@ -271,7 +270,7 @@ pub fn curve_bands(
             Bands::default(),
         );
     }
-    (limits, Bands::below(&limits, &levels))
+    (limits, Bands::keep_below(&limits, levels))
 }
 
 /// Where a curve's bands start (`curve_bands`): its budget with no shares kept, the speed its
@@ -484,7 +483,7 @@ mod tests {
             j_max: j,
             snap_max: m.max_snap,
         };
-        (limits, Bands::below(&limits, &levels))
+        (limits, Bands::keep_below(&limits, levels))
     }
 
     /// The band pairs in one pass, the capped speed solved only near the top and the top speed

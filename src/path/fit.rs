@@ -14,7 +14,7 @@
 //! line itself, whose junctions the transitions then cut along its whole length.
 
 use super::chain::{piece_limits, Curve, CurveLimits, Piece};
-use super::hermite::{bezier, Hermite, Jet, BOUND_PIECES};
+use super::hermite::{bezier, Hermite, Jet};
 use super::junction::corner_speed;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span};
 use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
@@ -227,11 +227,8 @@ impl SmoothBuilder {
             jet(end_of(&last), b, &last),
             lambda,
         );
-        let fitted = within_chords(&h, moves).then(|| {
-            let mut cells = Vec::with_capacity(BOUND_PIECES);
-            h.cells(|c| cells.push(c));
-            piece_limits(&cells, first.feed / h.speed_bound().max(1.0), m)
-        });
+        let fitted = within_chords(&h, moves)
+            .then(|| piece_limits(&h.cell_array(), first.feed / h.speed_bound().max(1.0), m));
         // Kept unless it is surely slower than the moves it replaces, or than one line between
         // its corners, or, over several moves or fitted from rest (nothing before it since a
         // stop), slower from rest to rest than the moves each from rest to rest.

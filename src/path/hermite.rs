@@ -227,6 +227,17 @@ impl Hermite {
         }
     }
 
+    /// `cells` as one array (no list to grow: a junction's search bounds many transitions).
+    pub fn cell_array(&self) -> [[Vec3; 3]; BOUND_PIECES] {
+        let mut out = [[[0.0; 3]; 3]; BOUND_PIECES];
+        let mut k = 0;
+        self.cells(|c| {
+            out[k] = c;
+            k += 1;
+        });
+        out
+    }
+
     /// Guaranteed bound of the parameter speed |p'| over [0, λ]: the Taylor bound, as above, of
     /// the scalar polynomial |p'(u)|² (degree 8) on `SPEED_PIECES` sub-intervals. Squared, the
     /// first-order term is 2·p'·p'', nearly zero where the speed is nearly 1 (p'' is then nearly

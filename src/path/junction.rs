@@ -49,17 +49,15 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<(f64, Own)>
 /// The derivative bound cells of a transition, the speed its feed caps it at (`feed/σ`), and
 /// what solving its top speed found (its limits then start from there).
 struct Own {
-    cells: Vec<[Vec3; 3]>,
+    cells: [[Vec3; 3]; BOUND_PIECES],
     cap: f64,
     top: Option<TopSpeeds>,
 }
 
 impl Own {
     fn of(h: &Hermite, feed: f64) -> Own {
-        let mut cells = Vec::with_capacity(BOUND_PIECES);
-        h.cells(|c| cells.push(c));
         Own {
-            cells,
+            cells: h.cell_array(),
             cap: feed / h.speed_bound().max(1.0),
             top: None,
         }

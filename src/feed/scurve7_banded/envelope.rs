@@ -8,6 +8,7 @@
 //! and the merge per ramp; every piece, hence every sum, is the one a rise built whole gives.
 
 use crate::feed::bands::{Banded, MAX_BANDS};
+use arrayvec::ArrayVec;
 use std::cell::RefCell;
 
 /// Pieces at most in an envelope: a rise and a plateau per band.
@@ -46,31 +47,30 @@ impl Piece {
     }
 }
 
-/// A fixed-capacity list of pieces, by increasing speed (or decreasing, as built).
-#[derive(Clone, Copy, Debug)]
-struct Pieces {
-    n: usize,
-    p: [Piece; MAX_PIECES],
-}
+/// A fixed-capacity list of pieces, by increasing speed (or decreasing, as built); never
+/// zeroed (many are built, few pieces each).
+#[derive(Clone, Debug, Default)]
+struct Pieces(ArrayVec<Piece, MAX_PIECES>);
 
 impl Pieces {
-    fn new() -> Pieces {
-        Pieces {
-            n: 0,
-            p: [Piece::default(); MAX_PIECES],
+    fn push(&mut self, piece: Piece) {
+        debug_assert!(!self.0.is_full(), "room for every piece");
+        if piece.v1 > piece.v0 && !self.0.is_full() {
+            self.0.push(piece);
         }
     }
-    fn push(&mut self, piece: Piece) {
-        debug_assert!(self.n < MAX_PIECES, "room for every piece");
-        if piece.v1 > piece.v0 && self.n < MAX_PIECES {
-            self.p[self.n] = piece;
-            self.n += 1;
-        }
+    fn len(&self) -> usize {
+        self.0.len()
     }
     fn as_slice(&self) -> &[Piece] {
-        &self.p[..self.n]
+        &self.0
     }
 }
+
+/// The bands of a ramp (`Level`), at most one per band and the block's top.
+type Levels = ArrayVec<Level, { MAX_BANDS + 1 }>;
+/// Per level, the index of its first piece of F (`forward_into`).
+type Starts = ArrayVec<usize, { MAX_BANDS + 1 }>;
 
 /// A band of the ramp: speeds [floor, top] with acceleration `a` and jerk `j`; the floor is
 /// clipped to lo, the top is the band's own (∞ for the block's top band).
@@ -82,53 +82,38 @@ struct Level {
     j: f64,
 }
 
-/// The bands crossed between `lo` and `hi`, floors clipped to lo (tops are not: see `Level`).
-fn levels(b: &Banded, lo: f64, hi: f64) -> ([Level; MAX_BANDS + 1], usize) {
-    let mut out = [Level::default(); MAX_BANDS + 1];
-    let n = levels_into(b, lo, hi, &mut out);
-    (out, n)
-}
-
-/// `levels` into `out`; returns how many.
-fn levels_into(b: &Banded, lo: f64, hi: f64, out: &mut [Level; MAX_BANDS + 1]) -> usize {
-    let mut n = 0;
+/// The bands crossed between `lo` and `hi` into `out` (empty), floors clipped to lo (tops are
+/// not: see `Level`).
+fn levels_into(b: &Banded, lo: f64, hi: f64, out: &mut Levels) {
     // Band k as `Banded::limits`, `floor_of` and `top_of` give it, read in one walk: the band
     // levels, then the block's own limits above them (no top).
     let bands = b.bands.levels().iter().map(|l| (l.v_top, l.a_max, l.j_max));
     let mut floor_k: f64 = 0.0;
     for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
         let floor = floor_k.max(lo);
-        if top_k.min(hi) > floor && n < out.len() {
-            out[n] = Level {
+        if top_k.min(hi) > floor && !out.is_full() {
+            out.push(Level {
                 floor,
                 top: top_k,
                 a,
                 j,
-            };
-            n += 1;
+            });
         }
         if top_k >= hi {
             break;
         }
         floor_k = top_k;
     }
-    n
 }
 
 /// Forward envelope over `levels`: a² grows by 2·J per unit of speed up to each band's A (cut
-/// to it at the band's floor where the band below allowed more). Unclipped at the top.
-fn forward(levels: &[Level]) -> Pieces {
-    let mut fwd = Pieces::new();
-    forward_into(levels, &mut fwd, &mut [0; MAX_BANDS + 1]);
-    fwd
-}
-
-/// `forward` into `fwd` (empty), with the index of each level's first piece in `starts` (those
-/// of the levels below come first).
-fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut [usize; MAX_BANDS + 1]) {
+/// to it at the band's floor where the band below allowed more). Unclipped at the top. Into
+/// `fwd` (empty), with the index of each level's first piece in `starts` (those of the levels
+/// below come first).
+fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut Starts) {
     let mut f: f64 = 0.0;
-    for (l, start) in levels.iter().zip(starts.iter_mut()) {
-        *start = fwd.n;
+    for l in levels {
+        starts.push(fwd.len());
         f = f.min(l.a);
         let reach = l.floor + (l.a * l.a - f * f) / (2.0 * l.j);
         let end = reach.min(l.top);
@@ -152,24 +137,11 @@ fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut [usize; MAX_BAN
     }
 }
 
-/// Backward envelope from `hi` down over `levels` (pieces by decreasing speed).
-fn backward(levels: &[Level], hi: f64) -> Pieces {
-    let mut bwd = Pieces::new();
-    backward_into(levels, hi, &mut bwd);
-    bwd
-}
-
-/// `backward` into `bwd` (emptied first).
-fn backward_into(levels: &[Level], hi: f64, bwd: &mut Pieces) {
-    backward_from(levels, hi, 0.0, bwd, false);
-}
-
-/// The backward envelope over `levels` from `hi`, where it has acceleration `g` (0 at the end of
-/// a rise), into `bwd` (emptied first). With `to_plateau`, down to the highest level k ≥ 1 where
+/// The backward envelope over `levels` from `hi` down (pieces by decreasing speed), where it has
+/// acceleration `g` (0 at the end of a rise), into `bwd` (empty). With `to_plateau`, down to the highest level k ≥ 1 where
 /// it comes onto that level's plateau: below k's floor it is then the same whatever `hi` (it
 /// leaves k at acceleration A_k); returns k (0 where it went down through every level).
 fn backward_from(levels: &[Level], hi: f64, mut g: f64, bwd: &mut Pieces, to_plateau: bool) -> usize {
-    bwd.n = 0;
     for (k, l) in levels.iter().enumerate().rev() {
         let top = l.top.min(hi);
         let g0 = g.min(l.a);
@@ -239,34 +211,32 @@ pub struct Rise<'a> {
     b: &'a Banded<'a>,
     lo: f64,
     /// The bands above lo (`levels` up to no top): those of a rise to hi are the ones below it.
-    levels: [Level; MAX_BANDS + 1],
-    n: usize,
+    levels: Levels,
     fwd: Pieces,
     /// Index of each level's first piece of F.
-    starts: [usize; MAX_BANDS + 1],
-    /// Room for each rise's backward envelope (not zeroed again for every rise).
-    bwd: RefCell<Pieces>,
+    starts: Starts,
     /// Time and distance of the rise below level k's floor, for the rises whose B comes onto
     /// k's plateau (`backward_from`): the same pieces in the same order for all of them, so the
     /// sums go on from there bit for bit. Summed when first needed.
-    below: RefCell<[Option<(f64, f64)>; MAX_BANDS + 1]>,
+    below: RefCell<ArrayVec<Option<(f64, f64)>, { MAX_BANDS + 1 }>>,
 }
 
 impl<'a> Rise<'a> {
+    // Inlined: built where it is used, its lists never zeroed nor moved (many are built, one
+    // per start speed asked).
+    #[inline(always)]
     pub fn from(b: &'a Banded<'a>, lo: f64) -> Rise<'a> {
-        // Built in place: a rise is a few kB, and many are built (one per start speed asked).
         let mut rise = Rise {
             b,
             lo,
-            levels: [Level::default(); MAX_BANDS + 1],
-            n: 0,
-            fwd: Pieces::new(),
-            starts: [0; MAX_BANDS + 1],
-            bwd: RefCell::new(Pieces::new()),
-            below: RefCell::new([None; MAX_BANDS + 1]),
+            levels: Levels::new(),
+            fwd: Pieces::default(),
+            starts: Starts::new(),
+            below: RefCell::new(ArrayVec::new()),
         };
-        rise.n = levels_into(b, lo, f64::INFINITY, &mut rise.levels);
-        forward_into(&rise.levels[..rise.n], &mut rise.fwd, &mut rise.starts);
+        levels_into(b, lo, f64::INFINITY, &mut rise.levels);
+        forward_into(&rise.levels, &mut rise.fwd, &mut rise.starts);
+        rise.below.get_mut().extend(rise.levels.iter().map(|_| None));
         rise
     }
 
@@ -276,7 +246,7 @@ impl<'a> Rise<'a> {
 
     /// The band the rise starts in: its top speed (∞ for the block's top band) and limits.
     pub fn first_band(&self) -> Option<(f64, f64, f64)> {
-        self.levels[..self.n].first().map(|l| (l.top, l.a, l.j))
+        self.levels.first().map(|l| (l.top, l.a, l.j))
     }
 
     pub fn banded(&self) -> &'a Banded<'a> {
@@ -288,8 +258,8 @@ impl<'a> Rise<'a> {
     pub fn time_distance(&self, hi: f64) -> (f64, f64) {
         let mut sum = Sum::default();
         if hi > self.lo {
-            let n = self.levels[..self.n].partition_point(|l| l.floor < hi);
-            let mut bwd = self.bwd.borrow_mut();
+            let n = self.levels.partition_point(|l| l.floor < hi);
+            let mut bwd = Pieces::default();
             let k = backward_from(&self.levels[..n], hi, 0.0, &mut bwd, true);
             if k > 0 {
                 (sum.t, sum.s) = self.below(k);
@@ -305,7 +275,7 @@ impl<'a> Rise<'a> {
         if let Some(sums) = self.below.borrow()[k] {
             return sums;
         }
-        let (floor, mut bwd) = (self.levels[k].floor, Pieces::new());
+        let (floor, mut bwd) = (self.levels[k].floor, Pieces::default());
         backward_from(&self.levels[..k], floor, self.levels[k].a, &mut bwd, false);
         let mut sum = Sum::default();
         let fwd = &self.fwd.as_slice()[..self.starts[k]];
@@ -330,14 +300,12 @@ pub fn band_below(b: &Banded, v: f64) -> (f64, f64, f64) {
 
 /// The speed rise lo → hi as constant-jerk pieces, in order, to `take` (F built for this rise only).
 pub(super) fn rise(b: &Banded, lo: f64, hi: f64, take: impl FnMut(&Piece)) {
-    let (levels, n) = levels(b, lo, hi);
-    let levels = &levels[..n];
-    merge(
-        forward(levels).as_slice(),
-        backward(levels, hi).as_slice(),
-        hi,
-        take,
-    );
+    let mut levels = Levels::new();
+    levels_into(b, lo, hi, &mut levels);
+    let (mut fwd, mut bwd) = (Pieces::default(), Pieces::default());
+    forward_into(&levels, &mut fwd, &mut Starts::new());
+    backward_from(&levels, hi, 0.0, &mut bwd, false);
+    merge(fwd.as_slice(), bwd.as_slice(), hi, take);
 }
 
 /// Time and distance of the rise lo → hi (the drop hi → lo takes the same).
