@@ -360,10 +360,22 @@ impl Search<'_> {
 
     /// Its time at the corner: faster than the slower neighbour, it runs at that one's speed
     /// (in its chain, or with no room to ramp between), so at the slowest of the three.
-    fn found(&self, k: i32, d: f64, h: Hermite, (v_max, own): (f64, Own), share: f64) -> Found {
+    /// `known`: a speed this cut was costed at already, and that cost.
+    fn found(
+        &self,
+        k: i32,
+        d: f64,
+        h: Hermite,
+        (v_max, own): (f64, Own),
+        share: f64,
+        known: Option<(f64, f64)>,
+    ) -> Found {
         let v = self.speed(d, v_max);
         Found {
-            cost: local_cost(d, h.length(), v, self.sides),
+            cost: match known {
+                Some((at, cost)) if at == v => cost,
+                _ => local_cost(d, h.length(), v, self.sides),
+            },
             d,
             h,
             own,
@@ -411,7 +423,7 @@ impl Search<'_> {
             // where a smaller one runs through.
             match faster_than_a_stop(&h, self.feed, m) {
                 Some(speed) => {
-                    best = Some(self.found(k, d, h, speed, share));
+                    best = Some(self.found(k, d, h, speed, share, None));
                     break;
                 }
                 None if stop_tries == STOP_TRIES => return None,
@@ -429,12 +441,15 @@ impl Search<'_> {
             let mut own = Own::of(&h, self.feed);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
-            let at_ceiling = local_cost(d, h.length(), self.speed(d, own.ceiling(m)), self.sides);
+            let v_ceiling = self.speed(d, own.ceiling(m));
+            let at_ceiling = local_cost(d, h.length(), v_ceiling, self.sides);
             if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
                 return None;
             }
             let v_max = own.speed(m);
-            let shorter = self.found(k, d, h, (v_max, own), share);
+            // Where the neighbours cap both speeds alike, the cost is the one just found.
+            let known = Some((v_ceiling, at_ceiling));
+            let shorter = self.found(k, d, h, (v_max, own), share, known);
             (shorter.cost < best.cost - SAVING && self.within(d, &shorter.h)).then_some(shorter)
         };
         // Down by halves while cheaper.
