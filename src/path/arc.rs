@@ -31,7 +31,7 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
             v = v.min((ax.max_acceleration / d2).sqrt());
         }
         if d3 > NEGLIGIBLE {
-            v = v.min((ax.max_jerk / d3).cbrt());
+            v = min_cbrt(v, ax.max_jerk / d3);
         }
         d2n = d2n.max(d2);
         d3n = d3n.max(d3);
@@ -40,9 +40,19 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
         v = v.min((a / d2n).sqrt());
     }
     if let (Some(j), true) = (machine.max_path_jerk, d3n > NEGLIGIBLE) {
-        v = v.min((j / d3n).cbrt());
+        v = min_cbrt(v, j / d3n);
     }
     v
+}
+
+/// min(v, ∛x), the root taken only where it may be the smaller: where x exceeds v³ by far more
+/// than the rounding of either, ∛x > v (the same value, without the root's cost).
+fn min_cbrt(v: f64, x: f64) -> f64 {
+    if x > v * v * v * (1.0 + 1e-9) {
+        v
+    } else {
+        v.min(x.cbrt())
+    }
 }
 
 /// Share of the free acceleration and jerk (A_i/|d1_i|, J_i/|d1_i|) that the tangential law keeps
