@@ -152,15 +152,22 @@ pub fn falsi_from(
     }
     // Which end moved last: the other end's value is halved when the same one moves twice.
     let mut last_good = None;
+    // Whether the last step probed the margin beside an end.
+    let mut probed = false;
     for _ in 0..BISECTIONS {
         let margin = 0.5 * ROOT_TOL * good.abs().max(bad.abs());
         if g_good == 0.0 || (bad - good).abs() <= 2.0 * margin {
             break;
         }
         let mut x = good - g_good * (bad - good) / (g_bad - g_good);
-        if !(x.is_finite() && (x - good) * (x - bad) < 0.0) {
+        // A secant that rounds onto an end (g there is rounding noise beside the other's) is
+        // taken once to the margin next to it, which closes the bracket where the crossing is
+        // that near; again (it was not), or outside the bracket, it bisects.
+        let inside = (x - good) * (x - bad);
+        if !(x.is_finite() && (inside < 0.0 || inside == 0.0 && !probed)) {
             x = 0.5 * (good + bad);
         }
+        probed = inside == 0.0;
         x = if good < bad {
             x.clamp(good + margin, bad - margin)
         } else {
@@ -281,5 +288,20 @@ mod tests {
         let x = falsi(0.0, 1.0, noisy);
         assert!(x <= 0.3 && 0.3 - x <= ROOT_TOL, "{x}");
         assert!(calls.get() < 50, "{} steps", calls.get());
+        // The other way round: the crossing at the good end, where g is rounding noise and
+        // grows as a square root past it (a block whose ramp between its ends just fits): one
+        // step beside that end closes it, where bisecting towards it took 35 to 40.
+        calls.set(0);
+        let root_like = |x: f64| {
+            calls.set(calls.get() + 1);
+            if x <= 0.3 {
+                -1e-19
+            } else {
+                (x - 0.3).sqrt()
+            }
+        };
+        let x = falsi(0.3, 0.35, root_like);
+        assert_eq!(x, 0.3);
+        assert!(calls.get() <= 3, "{} steps", calls.get());
     }
 }
