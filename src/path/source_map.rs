@@ -39,9 +39,10 @@ pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
 /// it (in path order). Between two lines (`symmetric`: a move or the moves of one line on each
 /// side), each half is within the tolerance of its line: the first half reports the moves before,
 /// the second those after, along each line as the foot of its points. Otherwise each sample of
-/// the tolerance check reports the nearest move from the last one's on (or stays where that is
-/// out of reach and the last is not), and the report changes halfway between samples: no point
-/// is farther than the guard from the sample it reports with.
+/// the tolerance check reports the nearest move from the last one's on (`nearest_onwards`), or,
+/// where that leaves a sample out of reach of its move, the moves in reach in path order
+/// (`in_reach`); the report changes halfway between samples: no point is farther than the guard
+/// from the sample it reports with.
 pub(super) fn transition_marks(
     h: &Hermite,
     before: &[Move],
@@ -61,8 +62,23 @@ pub(super) fn transition_marks(
     let moves: Vec<&Move> = before.iter().chain(after).collect();
     let step = h.length() / SAMPLES as f64;
     let guard = h.speed_bound() * step / 2.0;
+    let (own, marks, held) = nearest_onwards(h, &moves, step, guard);
+    if held {
+        return (own, marks);
+    }
+    // Reporting the nearest move onwards left a sample with a move it is not within the
+    // tolerance of (the path folds back: a later move passed near an earlier stretch, and the
+    // report cannot go back).
+    in_reach(h, &moves, step, guard).unwrap_or((own, marks))
+}
+
+/// Each sample of `h` (every `step`) reports the nearest of `moves` from the last one's on (or
+/// stays where that is out of reach and the last is not); the report changes halfway between
+/// samples. Also whether every sample is within the tolerance less `guard` of the move it
+/// reports.
+fn nearest_onwards(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> (u32, Vec<(f64, u32)>, bool) {
     let holds = |mv: &Move, d: f64| d <= mv.tolerance - guard;
-    let (mut at, mut own) = (0, moves[0].line);
+    let (mut at, mut own, mut marks, mut held) = (0, moves[0].line, Vec::new(), true);
     for k in 0..=SAMPLES {
         let p = h.point(step * k as f64);
         // The nearest move from `at` on (the first of equals), and the distance to `at`'s.
@@ -79,12 +95,58 @@ pub(super) fn transition_marks(
             if k > 0 {
                 marks.push((step * (k as f64 - 0.5), moves[at].line));
             }
+        } else {
+            dj = d0;
         }
+        held &= holds(moves[at], dj);
         if k == 0 {
             own = moves[at].line;
         }
     }
-    (own, marks)
+    (own, marks, held)
+}
+
+/// The reports where each sample of `h` reports a move within the tolerance less `guard` of
+/// it, in path order (a sample never reports a move before the last one's), the distances
+/// summed over the samples least: a shortest path over (sample, move), each move reachable from
+/// the best of those at or before it one sample back. None where there is no such order.
+fn in_reach(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> Option<(u32, Vec<(f64, u32)>)> {
+    let n = moves.len();
+    let mut cost = vec![0.0; n];
+    let mut back = Vec::with_capacity(SAMPLES + 1);
+    for k in 0..=SAMPLES {
+        let p = h.point(step * k as f64);
+        let (mut next, mut from) = (vec![f64::INFINITY; n], vec![0; n]);
+        let (mut best, mut best_at) = (f64::INFINITY, 0);
+        for (i, mv) in moves.iter().enumerate() {
+            if cost[i] < best {
+                (best, best_at) = (cost[i], i);
+            }
+            let d = mv.source.distance(p);
+            if d <= mv.tolerance - guard && best.is_finite() {
+                (next[i], from[i]) = (best + d, best_at);
+            }
+        }
+        cost = next;
+        back.push(from);
+    }
+    let (mut i, total) = cost
+        .iter()
+        .enumerate()
+        .fold((0, f64::INFINITY), |m, (i, &c)| if c < m.1 { (i, c) } else { m });
+    if !total.is_finite() {
+        return None;
+    }
+    let mut reported = vec![0; SAMPLES + 1];
+    for k in (0..=SAMPLES).rev() {
+        reported[k] = i;
+        i = back[k][i];
+    }
+    let marks = (1..=SAMPLES)
+        .filter(|&k| reported[k] != reported[k - 1])
+        .map(|k| (step * (k as f64 - 0.5), moves[reported[k]].line))
+        .collect();
+    Some((moves[reported[0]].line, marks))
 }
 
 /// For u in [u0, u1] on `h`, near the line of `moves`: the move the foot of h(u0) on the line
