@@ -90,9 +90,12 @@ sweep: fmu venv-full
 test: test-rust test-python
 
 # The release profile of `make build` (see there); the C-ABI tests load the shared library cargo
-# builds with them (target/release/deps/libcnc_motion.so; tests/common/mod.rs).
+# builds with them (target/release/deps/libcnc_motion.so; tests/common/mod.rs). The random tests
+# run on CI's seeds (.ci/run) unless the environment sets others, so the test command never
+# fails by chance; `make fuzz` runs fresh seeds.
 test-rust:
-	$(CARGO) test --release --workspace
+	PROPTEST_RNG_SEED=$${PROPTEST_RNG_SEED:-20261123} CNC_FUZZ_SEED=$${CNC_FUZZ_SEED:-20261123} \
+		$(CARGO) test --release --workspace
 
 test-python: fmu venv-full system-deps
 	$(FPY) -m pytest -q tests/python
