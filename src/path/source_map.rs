@@ -188,3 +188,49 @@ fn along(h: &Hermite, moves: &[Move], u0: f64, u1: f64, marks: &mut Vec<(f64, u3
     }
     at_u0.unwrap_or(last.line)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Line;
+    use crate::path::hermite::Jet;
+
+    fn line(start: [f64; 3], end: [f64; 3], line: u32) -> Move {
+        Move {
+            source: Source::Line(Line { start, end }),
+            line,
+            feed: 0.05,
+            tolerance: 0.01,
+            exact: false,
+        }
+    }
+
+    /// A path that folds back: the third move ends 4 µm beside the first one's start, where a
+    /// transition along the first move begins. Its first sample is nearest the third move, so
+    /// reporting the nearest move onwards leaves the rest of the transition (up to 0.35 away
+    /// from it) on the third; the moves in reach in path order keep it on the first, within
+    /// 3.5 µm of every sample.
+    #[test]
+    fn a_path_folding_back_reports_the_moves_in_reach() {
+        let moves = [
+            line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 10),
+            line([1.0, 0.0, 0.0], [1.0, 1.0, 0.0], 11),
+            line([1.0, 1.0, 0.0], [0.0, 0.004, 0.0], 12),
+        ];
+        let jet = |p| Jet {
+            p,
+            d1: [1.0, 0.0, 0.0],
+            d2: [0.0; 3],
+        };
+        let h = Hermite::new(jet([0.001, 0.0035, 0.0]), jet([0.5, 0.0, 0.0]), 0.5);
+        let all: Vec<&Move> = moves.iter().collect();
+        let step = h.length() / SAMPLES as f64;
+        let guard = h.speed_bound() * step / 2.0;
+        let (own, _, held) = nearest_onwards(&h, &all, step, guard);
+        assert_eq!((own, held), (12, false));
+        assert_eq!(
+            transition_marks(&h, &moves[..1], &moves[1..], false),
+            (10, vec![])
+        );
+    }
+}
