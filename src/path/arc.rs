@@ -2,7 +2,7 @@
 //! limit of seed 003.
 
 use super::budget::Budget;
-use super::tolerance::NEGLIGIBLE;
+use super::tolerance::{CUBE_MARGIN, NEGLIGIBLE};
 use crate::config::Machine;
 use crate::feed::bands::{Band, Bands, MAX_BANDS};
 use crate::feed::Limits;
@@ -46,9 +46,9 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
 }
 
 /// min(v, ∛x), the root taken only where it may be the smaller: where x exceeds v³ by far more
-/// than the rounding of either, ∛x > v (the same value, without the root's cost).
+/// than the rounding of either (`CUBE_MARGIN`), ∛x > v (the same value, without the root's cost).
 fn min_cbrt(v: f64, x: f64) -> f64 {
-    if x > v * v * v * (1.0 + 1e-9) {
+    if x > v * v * v * (1.0 + CUBE_MARGIN) {
         v
     } else {
         v.min(x.cbrt())

@@ -31,6 +31,9 @@ pub const FIT_STEPS: usize = 64;
 /// Relative guard on a sum of bounds (Taylor bounds of a polynomial, a piece's end against its
 /// curve's length) for the rounding of the sum.
 pub const BOUND_ROUNDING: f64 = 1e-12;
+/// Relative margin by which x must exceed v³ before ∛x is known to exceed v without taking the
+/// root (arc.rs `min_cbrt`): far above the rounding of v³ and of the root.
+pub const CUBE_MARGIN: f64 = 1e-9;
 /// Absolute guard (m) on a part's length within its whole, beside `BOUND_ROUNDING`.
 pub const LENGTH_ROUNDING: f64 = 1e-15;
 /// A part that reaches within this share of its whole's length reaches its end.
