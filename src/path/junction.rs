@@ -14,7 +14,7 @@ use super::chain::{piece_limits_known, piece_speed, piece_speed_ceiling, Curve, 
 use super::hermite::{Hermite, Jet, BOUND_PIECES};
 use super::slowest_axis;
 use super::smooth::{jet_at, Move, Span};
-use super::tolerance::{MIN_LENGTH, REVERSAL_COS};
+use super::tolerance::{MIN_LENGTH, REVERSAL_COS, TRANSITION_SAMPLES};
 use crate::config::Machine;
 use crate::feed::scurve7_banded::Rise;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
@@ -24,8 +24,6 @@ use cost::{joined_sides, local_cost, side, End, Side};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
-/// Samples of a transition checked against the programmed geometry.
-const DEVIATION_SAMPLES: usize = 64;
 
 /// The limits of transition `h` at `feed` if running through it beats stopping at the corner:
 /// its time at its speed limit is at most the rest-to-rest time over its length within the feed
@@ -490,19 +488,19 @@ const STOP_TRIES: u32 = 4;
 /// σ_max·λ/(2N) from one, where σ_max bounds |p'| — no point of the curve is farther than
 /// σ_max·λ/(2N) from a sample.
 fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> bool {
-    let guard = h.speed_bound() * h.length() / (2.0 * DEVIATION_SAMPLES as f64);
+    let guard = h.speed_bound() * h.length() / (2.0 * TRANSITION_SAMPLES as f64);
     let near = |mv: &Move, p| mv.source.distance(p) <= mv.tolerance - guard;
     // From the middle outwards: a cut too long fails first near the apex, where the transition
     // is farthest from both pieces (the cut search tries several before one keeps it).
-    let half = DEVIATION_SAMPLES / 2;
+    let half = TRANSITION_SAMPLES / 2;
     let order = (0..=half).flat_map(|i| [half - i, half + i]).skip(1);
     order.into_iter().all(|k| {
-        let p = h.point(h.length() * k as f64 / DEVIATION_SAMPLES as f64);
+        let p = h.point(h.length() * k as f64 / TRANSITION_SAMPLES as f64);
         // The moves nearest the sample's end of the transition first (the others often need
         // no distance).
         let mut first = before.iter().rev();
         let mut second = after.iter();
-        if 2 * k <= DEVIATION_SAMPLES {
+        if 2 * k <= TRANSITION_SAMPLES {
             first.any(|mv| near(mv, p)) || second.any(|mv| near(mv, p))
         } else {
             second.any(|mv| near(mv, p)) || first.any(|mv| near(mv, p))

@@ -17,11 +17,8 @@
 
 use super::hermite::Hermite;
 use super::smooth::{programmed, start_of, Move};
-use super::tolerance::FOOT_BISECTIONS;
+use super::tolerance::{FOOT_BISECTIONS, TRANSITION_SAMPLES};
 use crate::geometry::{dot, sub, unit, Source};
-
-/// Samples of a transition (as its tolerance check, junction.rs).
-const SAMPLES: usize = 64;
 
 /// Where each move after the first begins on the span fitted over `moves` (its parameter u).
 pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
@@ -60,7 +57,7 @@ pub(super) fn transition_marks(
         return (own, marks);
     }
     let moves: Vec<&Move> = before.iter().chain(after).collect();
-    let step = h.length() / SAMPLES as f64;
+    let step = h.length() / TRANSITION_SAMPLES as f64;
     let guard = h.speed_bound() * step / 2.0;
     let (own, marks, held) = nearest_onwards(h, &moves, step, guard);
     if held {
@@ -77,9 +74,8 @@ pub(super) fn transition_marks(
 /// samples. Also whether every sample is within the tolerance less `guard` of the move it
 /// reports.
 fn nearest_onwards(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> (u32, Vec<(f64, u32)>, bool) {
-    let holds = |mv: &Move, d: f64| d <= mv.tolerance - guard;
     let (mut at, mut own, mut marks, mut held) = (0, moves[0].line, Vec::new(), true);
-    for k in 0..=SAMPLES {
+    for k in 0..=TRANSITION_SAMPLES {
         let p = h.point(step * k as f64);
         // The nearest move from `at` on (the first of equals), and the distance to `at`'s.
         let d0 = moves[at].source.distance(p);
@@ -90,20 +86,27 @@ fn nearest_onwards(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> (u32,
                 (j, dj) = (i + 1, d);
             }
         }
-        if j > 0 && (holds(moves[at + j], dj) || !holds(moves[at], d0)) {
+        let d_at = if j > 0 && (holds(moves[at + j], dj, guard) || !holds(moves[at], d0, guard)) {
             at += j;
             if k > 0 {
                 marks.push((step * (k as f64 - 0.5), moves[at].line));
             }
+            dj
         } else {
-            dj = d0;
-        }
-        held &= holds(moves[at], dj);
+            d0
+        };
+        held &= holds(moves[at], d_at, guard);
         if k == 0 {
             own = moves[at].line;
         }
     }
     (own, marks, held)
+}
+
+/// A sample at distance `d` from `mv` is within its tolerance less `guard` (no point of the
+/// transition is farther than the guard from the sample it reports with).
+fn holds(mv: &Move, d: f64, guard: f64) -> bool {
+    d <= mv.tolerance - guard
 }
 
 /// The reports where each sample of `h` reports a move within the tolerance less `guard` of
@@ -113,8 +116,8 @@ fn nearest_onwards(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> (u32,
 fn in_reach(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> Option<(u32, Vec<(f64, u32)>)> {
     let n = moves.len();
     let mut cost = vec![0.0; n];
-    let mut back = Vec::with_capacity(SAMPLES + 1);
-    for k in 0..=SAMPLES {
+    let mut back = Vec::with_capacity(TRANSITION_SAMPLES + 1);
+    for k in 0..=TRANSITION_SAMPLES {
         let p = h.point(step * k as f64);
         let (mut next, mut from) = (vec![f64::INFINITY; n], vec![0; n]);
         let (mut best, mut best_at) = (f64::INFINITY, 0);
@@ -123,7 +126,7 @@ fn in_reach(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> Option<(u32,
                 (best, best_at) = (cost[i], i);
             }
             let d = mv.source.distance(p);
-            if d <= mv.tolerance - guard && best.is_finite() {
+            if holds(mv, d, guard) && best.is_finite() {
                 (next[i], from[i]) = (best + d, best_at);
             }
         }
@@ -137,12 +140,12 @@ fn in_reach(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> Option<(u32,
     if !total.is_finite() {
         return None;
     }
-    let mut reported = vec![0; SAMPLES + 1];
-    for k in (0..=SAMPLES).rev() {
+    let mut reported = vec![0; TRANSITION_SAMPLES + 1];
+    for k in (0..=TRANSITION_SAMPLES).rev() {
         reported[k] = i;
         i = back[k][i];
     }
-    let marks = (1..=SAMPLES)
+    let marks = (1..=TRANSITION_SAMPLES)
         .filter(|&k| reported[k] != reported[k - 1])
         .map(|k| (step * (k as f64 - 0.5), moves[reported[k]].line))
         .collect();
@@ -224,7 +227,7 @@ mod tests {
         };
         let h = Hermite::new(jet([0.001, 0.0035, 0.0]), jet([0.5, 0.0, 0.0]), 0.5);
         let all: Vec<&Move> = moves.iter().collect();
-        let step = h.length() / SAMPLES as f64;
+        let step = h.length() / TRANSITION_SAMPLES as f64;
         let guard = h.speed_bound() * step / 2.0;
         let (own, _, held) = nearest_onwards(&h, &all, step, guard);
         assert_eq!((own, held), (12, false));

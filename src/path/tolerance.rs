@@ -28,6 +28,9 @@ pub const SHARE_SLACK: f64 = 1e-9;
 /// Relative steps (doubling from one ulp) that bring a closed-form speed back inside the budget
 /// as evaluated, when rounding puts it a hair outside.
 pub const FIT_STEPS: usize = 64;
+/// Samples of a transition checked against the programmed geometry (junction.rs), which also
+/// say which move each stretch of it reports (source_map.rs).
+pub const TRANSITION_SAMPLES: usize = 64;
 /// Relative guard on a sum of bounds (Taylor bounds of a polynomial, a piece's end against its
 /// curve's length) for the rounding of the sum.
 pub const BOUND_ROUNDING: f64 = 1e-12;

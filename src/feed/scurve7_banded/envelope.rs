@@ -15,7 +15,7 @@ use std::cell::RefCell;
 const MAX_PIECES: usize = 2 * (MAX_BANDS + 1);
 
 /// a² = alpha + beta·v on [v0, v1] (beta = 2·jerk; 0 on a plateau).
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub(super) struct Piece {
     pub v0: f64,
     pub v1: f64,
@@ -74,7 +74,7 @@ type Starts = ArrayVec<usize, { MAX_BANDS + 1 }>;
 
 /// A band of the ramp: speeds [floor, top] with acceleration `a` and jerk `j`; the floor is
 /// clipped to lo, the top is the band's own (∞ for the block's top band).
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct Level {
     floor: f64,
     top: f64,
@@ -138,9 +138,10 @@ fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut Starts) {
 }
 
 /// The backward envelope over `levels` from `hi` down (pieces by decreasing speed), where it has
-/// acceleration `g` (0 at the end of a rise), into `bwd` (empty). With `to_plateau`, down to the highest level k ≥ 1 where
-/// it comes onto that level's plateau: below k's floor it is then the same whatever `hi` (it
-/// leaves k at acceleration A_k); returns k (0 where it went down through every level).
+/// acceleration `g` (0 at the end of a rise), into `bwd` (empty). With `to_plateau`, down to the
+/// highest level k ≥ 1 where it comes onto that level's plateau: below k's floor it is then the
+/// same whatever `hi` (it leaves k at acceleration A_k); returns k (0 where it went down through
+/// every level).
 fn backward_from(levels: &[Level], hi: f64, mut g: f64, bwd: &mut Pieces, to_plateau: bool) -> usize {
     for (k, l) in levels.iter().enumerate().rev() {
         let top = l.top.min(hi);
@@ -222,8 +223,8 @@ pub struct Rise<'a> {
 }
 
 impl<'a> Rise<'a> {
-    // Inlined: built where it is used, its lists never zeroed nor moved (many are built, one
-    // per start speed asked).
+    // Inlined, to be built where it is used; its lists are never zeroed (many are built, one per
+    // start speed asked).
     #[inline(always)]
     pub fn from(b: &'a Banded<'a>, lo: f64) -> Rise<'a> {
         let mut rise = Rise {
