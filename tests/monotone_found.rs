@@ -289,3 +289,38 @@ M30
         );
     }
 }
+
+/// A case `limit_failure_rate` found (seed 2): eight short moves on axes of low acceleration
+/// and jerk (X 242 mm/s², Z 1102 mm/s³). From 1.35 times every acceleration limit on, the corner
+/// between the 0.28 mm helical arc (from rest: a stop before it) and the 0.52 mm line after it
+/// stopped: its cost counted the arc as rising to its own speed and the line as running on at
+/// its own, where each is too short to, and put the stop 0.06 ms below the best cut. It cost
+/// 10 ms: 0.3742 s against 0.3641 s at 2.1 times. A stop is now also compared with the best cut
+/// by each side's block between the corner and its far end (the stop before the arc, the
+/// ceiling at the line's end), and not taken where that says to run through
+/// (path/junction.rs, `transition`).
+#[test]
+fn a_higher_acceleration_limit_does_not_stop_between_two_short_moves() {
+    let program = "G21 G90 G17 G64 F816.1
+G1 X-0.0031 Y0.0037 Z-0.0001
+G1 X-0.0111 Y0.0170 Z0.0016
+G3 X-0.0135 Y0.0223 Z0.0029 I-0.0140 J-0.0032
+G3 X-0.0165 Y0.0204 Z0.0029 I-0.0014 J-0.0011
+G3 X-0.0879 Y0.1555 Z-0.0545 I-0.0235 J0.0740
+G1 X-0.0896 Y0.1542 Z-0.0544
+G1 X-0.4899 Y-0.1597 Z0.0479
+G3 X-0.5013 Y-0.1755 Z0.0479 I0.0105 J-0.0196
+M30
+";
+    let (v, j) = ([2640.73, 1939.54, 2665.91], [8542394.23, 58726.68, 1102.10]);
+    let axes = |a: [f64; 3]| [0, 1, 2].map(|k| [v[k], a[k], j[k]]);
+    let low = [241.66, 668.58, 1018.79];
+    let low_time = time(program, &found_machine(0.02264, axes(low)));
+    for k in [1.35, 1.6, 2.103] {
+        let high_time = time(program, &found_machine(0.02264, axes(low.map(|a| a * k))));
+        assert!(
+            high_time <= low_time * (1.0 + SLACK),
+            "×{k}: {high_time} s > {low_time} s"
+        );
+    }
+}

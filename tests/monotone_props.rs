@@ -38,7 +38,9 @@
 //! block to rest (→ 116; a higher limit: 17 → 15 of 6000); every span's exit is estimated
 //! from the transition at its far end (→ 74; a higher limit: 14); a curve fitted from rest is
 //! compared with its moves from rest to rest (→ 73); a speed band's jerk no longer depends on
-//! the acceleration limits (→ 70; a higher limit: 6).
+//! the acceleration limits (→ 70; a higher limit: 6); a stop at a corner is taken only where
+//! it also costs less with each side's block between the corner and its far end (a higher
+//! limit: 8 → 6, the worst ×1.028 → ×1.0044; a larger tolerance: 71).
 //!
 //! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
 //! every lengthened case; the cases kept from them are in tests/monotone_found.rs.

@@ -20,7 +20,7 @@ use crate::feed::scurve7_banded::Rise;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
 use crate::Vec3;
-use cost::{joined_sides, local_cost, side, End, Side};
+use cost::{joined_sides, local_cost, side, End, Far, Side};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -189,9 +189,23 @@ pub(super) fn transition(
             side.v = side.v.min(rise.max_speed(length));
         }
     }
-    // At a stop (not an estimate), its block to rest is costed (`local_cost`).
-    sides[1].end = next.exit.filter(|&x| x == 0.0);
     joined_sides(&mut sides);
+    // The span before starts at rest after a stop (its entry is a bound otherwise), the span
+    // after ends at its exit (a stop, or the estimate at its far corner): the block between the
+    // corner and there (`local_cost`). The cuts are compared with the span after's block to a
+    // stop alone (as run; the estimate's would move every corner's choice for little).
+    let far = [held.entry.filter(|&v| v == 0.0), next.exit];
+    let far_of = |k: usize, side: &Side| {
+        far[k].map(|v| Far {
+            v,
+            at_start: k == 0,
+            ramp: match rises[k] {
+                Some(rise) if v < side.v => rise.time_distance(side.v),
+                _ => (0.0, 0.0),
+            },
+        })
+    };
+    sides[1].far = far_of(1, &sides[1]).filter(|f| f.v == 0.0);
     let slower = sides[0].v.min(sides[1].v);
     let search = Search {
         held,
@@ -231,17 +245,22 @@ pub(super) fn transition(
             }
         }
     }
-    // A stop is the shortest cut of all (every tolerance admits it): taken where it costs less.
-    if best
-        .as_ref()
-        .is_some_and(|b| local_cost(0.0, 0.0, 0.0, &sides) < b.cost - SAVING)
-    {
-        return None;
+    // A stop is the shortest cut of all (every tolerance admits it): taken where it costs less,
+    // with the spans beside the corner running on at their own speeds and with their far ends
+    // counted too (a short span's ramps to and from the corner share its length: where the
+    // first says stop, the second often does not).
+    let best = best?;
+    if local_cost(0.0, 0.0, 0.0, &sides) < best.cost - SAVING {
+        for (k, side) in sides.iter_mut().enumerate() {
+            side.far = far_of(k, side);
+        }
+        let at_best = local_cost(best.d, best.h.length(), best.at, &sides);
+        if local_cost(0.0, 0.0, 0.0, &sides) < at_best - SAVING {
+            return None;
+        }
     }
-    best.map(|b| {
-        let limits = b.own.limits(m);
-        (b.d, b.d, b.h, limits)
-    })
+    let limits = best.own.limits(m);
+    Some((best.d, best.d, best.h, limits))
 }
 
 /// A transition's speed at this share of the feed (or of its slower neighbour's speed) or above
@@ -254,6 +273,8 @@ const TIGHT: f64 = 0.25;
 /// A cut found: its time at the corner, the cut, the curve, its cells and its top speed.
 struct Found {
     cost: f64,
+    /// The speed it was costed at.
+    at: f64,
     d: f64,
     h: Hermite,
     own: Own,
@@ -370,6 +391,7 @@ impl Search<'_> {
     ) -> Found {
         let v = self.speed(d, v_max);
         Found {
+            at: v,
             cost: match known {
                 Some((at, cost)) if at == v => cost,
                 _ => local_cost(d, h.length(), v, self.sides),

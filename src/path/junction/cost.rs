@@ -21,8 +21,19 @@ pub(super) struct Side {
     pub(super) length: f64,
     pub(super) curved: bool,
     pub(super) feed: f64,
-    /// The speed its span ends at, where known (the span after, before a stop).
-    pub(super) end: Option<f64>,
+    /// The speed at its span's far end from the corner, where known: its block between the
+    /// corner and there is costed (`local_cost`).
+    pub(super) far: Option<Far>,
+}
+
+/// A side's far end: the speed its span starts at (the span before, after a stop) or ends at
+/// (the span after: a stop, or the estimate at its own far corner), and the time and distance
+/// of its ramp between that speed and the side's own ((0, 0) where that is not below).
+#[derive(Clone, Copy)]
+pub(super) struct Far {
+    pub(super) v: f64,
+    pub(super) at_start: bool,
+    pub(super) ramp: (f64, f64),
 }
 
 /// A side's speed where its span begins (the span before) or ends (the span after), where
@@ -68,7 +79,7 @@ pub(super) fn side(span: &mut Span, feed: f64, m: &Machine) -> Side {
         length: piece.length(),
         curved: !matches!(piece.curve, Curve::Line(_)),
         feed,
-        end: None,
+        far: None,
     }
 }
 
@@ -90,9 +101,10 @@ pub(super) fn joined_sides(sides: &mut [Side; 2]) {
 /// own run, less the stretches of the neighbours it replaces at their own speeds, plus what each
 /// neighbour loses to the ramp between `v` and its own speed (the fastest within its limits and
 /// bands, `scurve7_banded`, as far as its length reaches): T − D/v_side over the ramp. A
-/// neighbour whose end speed is known (the last span before a stop) counts its block from `v`
-/// to that end over what the cut leaves of it instead (less its whole length at its speed, as
-/// the others): it does not run on at its own speed.
+/// neighbour whose far end is known (`Far`) counts its block between `v` and that end over what
+/// the cut leaves of it instead (less its whole length at its speed, as the others): it does
+/// not run on at its own speed, and its two ramps share what is left of it. Where both fit,
+/// that is the ramp from `v` and the far ramp, each against running at its own speed.
 pub(super) fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 {
     let mut cost = length / v.max(f64::MIN_POSITIVE);
     for s in sides {
@@ -102,27 +114,42 @@ pub(super) fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 
             top: &s.top,
             bands: &s.bands,
         };
-        if let Some(v_end) = s.end {
-            // Its block from v to its end over what is left of it, less the same constant.
-            let rest = (s.length - d).max(0.0);
-            let (t, _) = scurve7_banded::plan_time(&banded, rest, v.clamp(0.0, v_side), v_end, v_side);
-            cost += t - s.length / v_side;
+        let rest = (s.length - d).max(0.0);
+        if let Some(far) = s.far {
+            let v0 = v.clamp(0.0, v_side);
+            let (t, x) = rise(&banded, v0, v_side, f64::INFINITY);
+            let (t_far, x_far) = far.ramp;
+            if x + x_far <= rest {
+                cost += t - x / v_side + t_far - x_far / v_side - d / v_side;
+            } else {
+                // Its block over what is left of it, less the same constant.
+                let (v_in, v_out) = if far.at_start { (far.v, v0) } else { (v0, far.v) };
+                let (t, _) = scurve7_banded::plan_time(&banded, rest, v_in, v_out, v_side);
+                cost += t - s.length / v_side;
+            }
             continue;
         }
         cost -= d / v_side;
         if v < v_side {
-            let (v0, rest) = (v.max(0.0), (s.length - d).max(0.0));
-            let (t, x) = if s.bands.levels().is_empty() {
-                // One band: scurve7's closed forms.
-                scurve7::rise_within(v0, v_side, rest, &s.top)
-            } else {
-                // Every ramp here rises from v (one forward envelope).
-                ramp_within(&scurve7_banded::Rise::from(&banded, v0), v_side, rest)
-            };
+            let (t, x) = rise(&banded, v.max(0.0), v_side, rest);
             cost += t - x / v_side;
         }
     }
     cost
+}
+
+/// Time and distance of the side's rise from v0 up to `v_side`, or over `rest` where it ends
+/// before.
+fn rise(banded: &Banded, v0: f64, v_side: f64, rest: f64) -> (f64, f64) {
+    if v0 >= v_side {
+        (0.0, 0.0)
+    } else if banded.bands.levels().is_empty() {
+        // One band: scurve7's closed forms.
+        scurve7::rise_within(v0, v_side, rest, banded.top)
+    } else {
+        // Every ramp here rises from v (one forward envelope).
+        ramp_within(&scurve7_banded::Rise::from(banded, v0), v_side, rest)
+    }
 }
 
 /// Time and distance of `rise` up to `v_side`, or over `rest` where it ends before (the side is
