@@ -281,6 +281,20 @@ impl Hermite {
         (bound * (1.0 + BOUND_ROUNDING)).sqrt()
     }
 
+    /// Bound of |p''| over [0, λ]: per axis, the sum of the second derivative's terms at their
+    /// largest (u = λ), with the rounding allowance of the other bounds.
+    pub fn curvature_bound(&self) -> f64 {
+        let mut b = [0.0f64; 3];
+        for (i, bi) in b.iter_mut().enumerate() {
+            let mut lk = 1.0;
+            for k in 2..=5 {
+                *bi += (k * (k - 1)) as f64 * self.c[k - 1][i].abs() * lk;
+                lk *= self.lambda;
+            }
+        }
+        norm(b) * (1.0 + BOUND_ROUNDING)
+    }
+
     /// Bézier control points (τ-form): the curve lies in their convex hull.
     pub fn control_points(&self) -> [Vec3; 6] {
         bezier(&self.jet(0.0), &self.jet(self.lambda), self.lambda)

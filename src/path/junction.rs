@@ -11,6 +11,7 @@ mod cost;
 
 use super::arc::TopSpeeds;
 use super::chain::{piece_limits_known, piece_speed, piece_speed_ceiling, Curve, CurveLimits};
+use super::cover::Guards;
 use super::hermite::{Hermite, Jet, BOUND_PIECES};
 use super::slowest_axis;
 use super::smooth::{jet_at, Move, Span};
@@ -506,26 +507,23 @@ const PRUNE_MARGIN: f64 = 1e-2;
 const STOP_TRIES: u32 = 4;
 
 /// Every point of `h` within the tolerance of one of the programmed moves it replaces (`before`
-/// and `after` the corner, in path order): samples every λ/N, each at most tolerance −
-/// σ_max·λ/(2N) from one, where σ_max bounds |p'| — no point of the curve is farther than
-/// σ_max·λ/(2N) from a sample.
-fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> bool {
-    let guard = h.speed_bound() * h.length() / (2.0 * TRANSITION_SAMPLES as f64);
-    let near = |mv: &Move, p| mv.source.distance(p) <= mv.tolerance - guard;
+/// and `after` the corner, in path order): each of its samples keeps the half-steps about it
+/// within the tolerance of one (cover.rs).
+pub(super) fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> bool {
+    let g = Guards::of(h);
     // From the middle outwards: a cut too long fails first near the apex, where the transition
     // is farthest from both pieces (the cut search tries several before one keeps it).
     let half = TRANSITION_SAMPLES / 2;
     let order = (0..=half).flat_map(|i| [half - i, half + i]).skip(1);
     order.into_iter().all(|k| {
-        let p = h.point(h.length() * k as f64 / TRANSITION_SAMPLES as f64);
+        let s = g.sample(h, k);
+        let near = |mv: &Move| g.holds(mv, &s, mv.source.distance(s.p));
         // The moves nearest the sample's end of the transition first (the others often need
         // no distance).
-        let mut first = before.iter().rev();
-        let mut second = after.iter();
         if 2 * k <= TRANSITION_SAMPLES {
-            first.any(|mv| near(mv, p)) || second.any(|mv| near(mv, p))
+            before.iter().rev().chain(after).any(near)
         } else {
-            second.any(|mv| near(mv, p)) || first.any(|mv| near(mv, p))
+            after.iter().chain(before.iter().rev()).any(near)
         }
     })
 }

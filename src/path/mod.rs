@@ -24,6 +24,7 @@ mod budget;
 mod chain;
 mod check;
 mod corner;
+mod cover;
 mod fit;
 mod hermite;
 mod junction;

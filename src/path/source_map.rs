@@ -7,14 +7,15 @@
 //!   u ∈ [U_k, U_k + |m_k|], U_k = Σ_{i<k} |m_i|, lies within the tolerance of m_k's chord, so
 //!   m_k begins at U_k;
 //! - a transition passes from the move before it to the move after it where the samples of its
-//!   tolerance check (each within tol − guard of one of the two, no point farther than the guard
-//!   from the nearest sample) turn nearer the second; between two lines, whose transition is
-//!   symmetric about the bisector of the corner, at its middle;
+//!   tolerance check (each keeping the half-steps about it within the tolerance of one of the
+//!   two, cover.rs) turn nearer the second; between two lines, whose transition is symmetric
+//!   about the bisector of the corner, at its middle;
 //! - where the programmed geometry on one side of a transition is several moves that continue
 //!   one line (fit.rs `continues`), each point of the transition on that side reports the move
 //!   its foot on the line lies in: the point is within the tolerance of the line, so of that
 //!   move.
 
+use super::cover::Guards;
 use super::hermite::Hermite;
 use super::smooth::{programmed, start_of, Move};
 use super::tolerance::{FOOT_BISECTIONS, TRANSITION_SAMPLES};
@@ -38,8 +39,8 @@ pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
 /// the second those after, along each line as the foot of its points. Otherwise each sample of
 /// the tolerance check reports the nearest move from the last one's on (`nearest_onwards`), or,
 /// where that leaves a sample out of reach of its move, the moves in reach in path order
-/// (`in_reach`); the report changes halfway between samples: no point is farther than the guard
-/// from the sample it reports with.
+/// (`in_reach`); the report changes halfway between samples: the half-steps about a sample keep
+/// the tolerance of the move it reports (cover.rs).
 pub(super) fn transition_marks(
     h: &Hermite,
     before: &[Move],
@@ -57,26 +58,26 @@ pub(super) fn transition_marks(
         return (own, marks);
     }
     let moves: Vec<&Move> = before.iter().chain(after).collect();
-    let step = h.length() / TRANSITION_SAMPLES as f64;
-    let guard = h.speed_bound() * step / 2.0;
-    let (own, marks, held) = nearest_onwards(h, &moves, step, guard);
+    let g = Guards::of(h);
+    let (own, marks, held) = nearest_onwards(h, &moves, &g);
     if held {
         return (own, marks);
     }
     // Reporting the nearest move onwards left a sample with a move it is not within the
     // tolerance of (the path folds back: a later move passed near an earlier stretch, and the
     // report cannot go back).
-    in_reach(h, &moves, step, guard).unwrap_or((own, marks))
+    in_reach(h, &moves, &g).unwrap_or((own, marks))
 }
 
-/// Each sample of `h` (every `step`) reports the nearest of `moves` from the last one's on (or
-/// stays where that is out of reach and the last is not); the report changes halfway between
-/// samples. Also whether every sample is within the tolerance less `guard` of the move it
-/// reports.
-fn nearest_onwards(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> (u32, Vec<(f64, u32)>, bool) {
+/// Each sample of `h` reports the nearest of `moves` from the last one's on (or stays where
+/// that is out of reach and the last is not); the report changes halfway between samples. Also
+/// whether every sample keeps the half-steps about it within the tolerance of the move it
+/// reports (cover.rs).
+fn nearest_onwards(h: &Hermite, moves: &[&Move], g: &Guards) -> (u32, Vec<(f64, u32)>, bool) {
     let (mut at, mut own, mut marks, mut held) = (0, moves[0].line, Vec::new(), true);
     for k in 0..=TRANSITION_SAMPLES {
-        let p = h.point(step * k as f64);
+        let s = g.sample(h, k);
+        let p = s.p;
         // The nearest move from `at` on (the first of equals), and the distance to `at`'s.
         let d0 = moves[at].source.distance(p);
         let (mut j, mut dj) = (0, d0);
@@ -86,16 +87,16 @@ fn nearest_onwards(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> (u32,
                 (j, dj) = (i + 1, d);
             }
         }
-        let d_at = if j > 0 && (holds(moves[at + j], dj, guard) || !holds(moves[at], d0, guard)) {
+        let d_at = if j > 0 && (g.holds(moves[at + j], &s, dj) || !g.holds(moves[at], &s, d0)) {
             at += j;
             if k > 0 {
-                marks.push((step * (k as f64 - 0.5), moves[at].line));
+                marks.push((g.step * (k as f64 - 0.5), moves[at].line));
             }
             dj
         } else {
             d0
         };
-        held &= holds(moves[at], d_at, guard);
+        held &= g.holds(moves[at], &s, d_at);
         if k == 0 {
             own = moves[at].line;
         }
@@ -103,30 +104,24 @@ fn nearest_onwards(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> (u32,
     (own, marks, held)
 }
 
-/// A sample at distance `d` from `mv` is within its tolerance less `guard` (no point of the
-/// transition is farther than the guard from the sample it reports with).
-fn holds(mv: &Move, d: f64, guard: f64) -> bool {
-    d <= mv.tolerance - guard
-}
-
-/// The reports where each sample of `h` reports a move within the tolerance less `guard` of
-/// it, in path order (a sample never reports a move before the last one's), the distances
+/// The reports where each sample of `h` reports a move it keeps the half-steps about it within
+/// the tolerance of, in path order (a sample never reports a move before the last one's), the distances
 /// summed over the samples least: a shortest path over (sample, move), each move reachable from
 /// the best of those at or before it one sample back. None where there is no such order.
-fn in_reach(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> Option<(u32, Vec<(f64, u32)>)> {
+fn in_reach(h: &Hermite, moves: &[&Move], g: &Guards) -> Option<(u32, Vec<(f64, u32)>)> {
     let n = moves.len();
     let mut cost = vec![0.0; n];
     let mut back = Vec::with_capacity(TRANSITION_SAMPLES + 1);
     for k in 0..=TRANSITION_SAMPLES {
-        let p = h.point(step * k as f64);
+        let s = g.sample(h, k);
         let (mut next, mut from) = (vec![f64::INFINITY; n], vec![0; n]);
         let (mut best, mut best_at) = (f64::INFINITY, 0);
         for (i, mv) in moves.iter().enumerate() {
             if cost[i] < best {
                 (best, best_at) = (cost[i], i);
             }
-            let d = mv.source.distance(p);
-            if holds(mv, d, guard) && best.is_finite() {
+            let d = mv.source.distance(s.p);
+            if g.holds(mv, &s, d) && best.is_finite() {
                 (next[i], from[i]) = (best + d, best_at);
             }
         }
@@ -147,7 +142,7 @@ fn in_reach(h: &Hermite, moves: &[&Move], step: f64, guard: f64) -> Option<(u32,
     }
     let marks = (1..=TRANSITION_SAMPLES)
         .filter(|&k| reported[k] != reported[k - 1])
-        .map(|k| (step * (k as f64 - 0.5), moves[reported[k]].line))
+        .map(|k| (g.step * (k as f64 - 0.5), moves[reported[k]].line))
         .collect();
     Some((moves[reported[0]].line, marks))
 }
@@ -227,9 +222,7 @@ mod tests {
         };
         let h = Hermite::new(jet([0.001, 0.0035, 0.0]), jet([0.5, 0.0, 0.0]), 0.5);
         let all: Vec<&Move> = moves.iter().collect();
-        let step = h.length() / TRANSITION_SAMPLES as f64;
-        let guard = h.speed_bound() * step / 2.0;
-        let (own, _, held) = nearest_onwards(&h, &all, step, guard);
+        let (own, _, held) = nearest_onwards(&h, &all, &Guards::of(&h));
         assert_eq!((own, held), (12, false));
         assert_eq!(
             transition_marks(&h, &moves[..1], &moves[1..], false),
