@@ -1,7 +1,7 @@
 //! Circular arcs and helices (G2/G3, circular corner blends): exact evaluation w.r.t. arc length
 //! and bounds of the derivatives per axis (the path stage projects the axis limits through them).
 
-use super::{add, basis, cross, dot, scale, Geo, Plane, Vec3};
+use super::{add, basis, cross, dot, scale, sub, Geo, Plane, Vec3};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -183,7 +183,41 @@ impl Arc {
     }
 }
 
+/// A point seen from an arc's axis (`Arc::at_angle`): its coordinates along e1, e2 and the axis,
+/// its distance ρ from the axis, and, of the arc's turns at the point's own angle, the nearest:
+/// its angle from the start (at most the sweep) and its distance hypot(ρ − R, z − h·angle), h
+/// the rise per radian (None where no turn of the arc reaches that angle).
+#[derive(Clone, Copy, Debug)]
+pub struct AtAngle {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    pub rho: f64,
+    pub turn: Option<(f64, f64)>,
+}
+
 impl Arc {
+    /// Where `p` lies about the arc's axis, and the arc's nearest point at its angle (`AtAngle`):
+    /// the distance from the arc where its foot is not an end (`Source::distance`).
+    pub fn at_angle(&self, p: Vec3) -> AtAngle {
+        let rel = sub(p, self.center);
+        let (x, y, z) = (dot(rel, self.e1), dot(rel, self.e2), dot(rel, self.axis));
+        // atan2 lies in [−π, π], where `rem_euclid(TAU)` is this (its fmod returns |phi| < TAU
+        // as is).
+        let phi = y.atan2(x);
+        let phi = if phi < 0.0 { phi + TAU } else { phi };
+        let h = self.rise / self.sweep;
+        let rho = x.hypot(y);
+        let radial = rho - self.radius;
+        let turns = (self.sweep / TAU).floor() as usize;
+        let turn = (0..=turns.min(64))
+            .map(|k| phi + TAU * k as f64)
+            .filter(|&f| f <= self.sweep)
+            .map(|f| (f, radial.hypot(z - h * f)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        AtAngle { x, y, z, rho, turn }
+    }
+
     /// Per-axis bounds of |p'|, |p''|, |p'''| on stretches of at most `CELL_ANGLE` of the sweep:
     /// each component is a sinusoid of φ of amplitude R·|(e1_i, e2_i)| (over k, k², k³), so on
     /// [φc − δ, φc + δ] it stays within its value at φc plus the amplitude times δ.

@@ -11,7 +11,7 @@ mod source;
 pub mod vec2;
 mod vec3;
 
-pub use arc::Arc;
+pub use arc::{Arc, AtAngle};
 pub use line::Line;
 pub use plane::Plane;
 pub use source::{distance_to_segment, Source};

@@ -39,24 +39,6 @@ pub fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f64 {
 }
 
 fn distance_to_arc(p: Vec3, a: &Arc) -> f64 {
-    let rel = sub(p, a.center);
-    let (x, y, z) = (dot(rel, a.e1), dot(rel, a.e2), dot(rel, a.axis));
-    // atan2 lies in [−π, π], where `rem_euclid(TAU)` is this (its fmod returns |phi| < TAU as is).
-    let phi = y.atan2(x);
-    let phi = if phi < 0.0 {
-        phi + std::f64::consts::TAU
-    } else {
-        phi
-    };
-    let h = a.rise / a.sweep;
-    let mut best = norm(sub(p, a.start)).min(norm(sub(p, a.end)));
-    let turns = (a.sweep / std::f64::consts::TAU).floor() as usize;
-    let radial = x.hypot(y) - a.radius;
-    for k in 0..=turns.min(64) {
-        let f = phi + std::f64::consts::TAU * k as f64;
-        if f <= a.sweep {
-            best = best.min(radial.hypot(z - h * f));
-        }
-    }
-    best
+    let ends = norm(sub(p, a.start)).min(norm(sub(p, a.end)));
+    a.at_angle(p).turn.map_or(ends, |(_, d)| ends.min(d))
 }

@@ -17,9 +17,8 @@
 use super::hermite::Hermite;
 use super::smooth::Move;
 use super::tolerance::TRANSITION_SAMPLES;
-use crate::geometry::{add, dot, norm, scale, sub, Arc, Line, Source};
+use crate::geometry::{add, dot, norm, scale, sub, Arc, AtAngle, Line, Source};
 use crate::Vec3;
-use std::f64::consts::TAU;
 
 /// A transition's sample spacing and the bounds its guards come from.
 #[derive(Clone, Copy, Debug)]
@@ -99,32 +98,17 @@ impl Guards {
     /// where the sample's distance was an end point's. None where the angle may leave the
     /// sweep or the point come near the axis.
     fn across_arc(&self, a: &Arc, s: &Sample, d: f64, delta: f64) -> Option<f64> {
-        let rel = sub(s.p, a.center);
-        let (x, y, z) = (dot(rel, a.e1), dot(rel, a.e2), dot(rel, a.axis));
-        let rho = x.hypot(y);
+        let AtAngle { x, y, rho, turn, .. } = a.at_angle(s.p);
         let reach = self.sigma * delta;
         let rho_min = rho - reach;
         if rho_min <= 0.0 {
             return None;
         }
-        let phi = {
-            let phi = y.atan2(x);
-            if phi < 0.0 {
-                phi + TAU
-            } else {
-                phi
-            }
-        };
         let h = a.rise / a.sweep;
         // The turn whose point at the sample's angle is nearest (as `Source::distance`).
-        let turns = (a.sweep / TAU).floor() as usize;
-        let (f, big_f) = (0..=turns.min(64))
-            .map(|k| phi + TAU * k as f64)
-            .filter(|&f| f <= a.sweep)
-            .map(|f| (f, (rho - a.radius).hypot(z - h * f)))
-            .min_by(|p, q| p.1.total_cmp(&q.1))?;
-        let turn = reach / rho_min;
-        if f < turn || f > a.sweep - turn {
+        let (f, big_f) = turn?;
+        let angle_reach = reach / rho_min;
+        if f < angle_reach || f > a.sweep - angle_reach {
             return None;
         }
         let e_rho = scale(add(scale(a.e1, x), scale(a.e2, y)), 1.0 / rho);

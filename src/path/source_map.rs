@@ -105,9 +105,10 @@ fn nearest_onwards(h: &Hermite, moves: &[&Move], g: &Guards) -> (u32, Vec<(f64, 
 }
 
 /// The reports where each sample of `h` reports a move it keeps the half-steps about it within
-/// the tolerance of, in path order (a sample never reports a move before the last one's), the distances
-/// summed over the samples least: a shortest path over (sample, move), each move reachable from
-/// the best of those at or before it one sample back. None where there is no such order.
+/// the tolerance of, in path order (a sample never reports a move before the last one's), the
+/// distances summed over the samples least: a shortest path over (sample, move), each move
+/// reachable from the best of those at or before it one sample back. None where there is no
+/// such order.
 fn in_reach(h: &Hermite, moves: &[&Move], g: &Guards) -> Option<(u32, Vec<(f64, u32)>)> {
     let n = moves.len();
     let mut cost = vec![0.0; n];
