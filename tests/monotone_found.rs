@@ -194,6 +194,30 @@ M30
     assert_larger_tolerance_not_longer(program, axes, [0.04813, 0.18342]);
 }
 
+/// A case `tolerance_failure_rate` found (seed 1): five arcs. From 2.6 times the tolerance the
+/// transition between the third and fourth (1.51 mm at 33.6 mm/s) and then the fourth arc
+/// (1.38 mm at 34.6 mm/s) joined the 0.59 mm of the third arc (27.6 mm/s) in one chain, which ran
+/// them all at 27.6 mm/s: 0.553 s against 0.538 s. Each side reaches 27.6 mm/s from rest within
+/// its length, so apart no ramp need pass through their junction and its block end costs
+/// nothing: they are not joined (path/smooth.rs, `joined_loss`).
+#[test]
+fn a_larger_tolerance_does_not_join_arcs_that_each_reach_the_slower_speed() {
+    let axes = [
+        [1655.49, 3678.73, 156239.94],
+        [7293.86, 3571.07, 143009462.25],
+        [1379.1, 445.21, 225553444.33],
+    ];
+    let program = "G21 G90 G17 G64 F3040.3
+G3 X9.6645 Y-0.2752 Z2.3063 I5.6379 J28.1605
+G1 X9.6837 Y-0.2740 Z2.3044
+G3 X10.5770 Y0.5361 Z2.3044 I0.0542 J0.8379
+G2 X11.4233 Y2.4144 Z2.3044 I2.3530 J0.0696
+G2 X11.4357 Y2.4112 Z2.3005 I0.0051 J-0.0061
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.008308, 0.021601]);
+}
+
 /// A case `limit_failure_rate` found (seed 4): two lines, the second (1.25 mm) the last before
 /// the program's end. At 2.51 times every axis's velocity limit the corner stopped instead of
 /// taking its transition: its cost counted the second line as running on at 35 mm/s after a
