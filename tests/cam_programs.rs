@@ -402,6 +402,38 @@ fn sub_tolerance_jogs_are_absorbed() {
     assert!(ratio <= 1.01, "jogs cost {ratio:.4} × the plain square's time");
 }
 
+#[test]
+fn sub_tolerance_jogs_before_an_arc_and_at_the_end_are_absorbed() {
+    // A 0.0001 mm jog where no line follows to take it: before an arc, and at the program's end.
+    // Run alone, each is a piece of its own with sharp turns (in effect a stop); the line before
+    // ends where the jog ends instead (path/micro.rs).
+    let mut with_jogs = Program::new(3000.0);
+    let mut plain = Program::new(3000.0);
+    for (prog, jog) in [(&mut with_jogs, true), (&mut plain, false)] {
+        prog.line([10.0, 0.0, 0.0]);
+        if jog {
+            prog.line([10.0, 0.0001, 0.0]);
+        }
+        prog.arc([15.0, 5.0, 0.0], [0.0, 5.0], false);
+        prog.line([15.0, 15.0, 0.0]);
+        if jog {
+            prog.line([15.0001, 15.0, 0.0]);
+        }
+    }
+    let m = machine();
+    let jogs = run(&with_jogs, &m);
+    let reference = run(&plain, &m);
+    report(
+        "line, arc and line with 0.0001 mm jogs",
+        &with_jogs,
+        &jogs,
+        3000.0,
+    );
+    let ratio = jogs.time / reference.time;
+    println!("with jogs before the arc and at the end: {ratio:.4} × the time without");
+    assert!(ratio <= 1.01, "jogs cost {ratio:.4} × the time without");
+}
+
 /// A straight line of `pairs` × (`long` + `short`) µm from the origin along `angle` (deg) at
 /// `feed`, written as moves alternating `long` and `short` µm with 5 decimals (pcb2gcode's
 /// isolation output looks like this), and the same line as one G1.

@@ -52,7 +52,11 @@ fn assert_larger_tolerance_not_longer(program: &str, axes: [[f64; 3]; 3], [small
 /// Since a fitted span may use the whole tolerance (not 0.7 of it), the line and the 0.26 mm
 /// hook before it fit as one curve at 33 mm/s whose top band leaves 0.4 mm/s² (1.658 s against
 /// 1.583 s): a curve over several moves slower from rest to rest on its own ramps than its
-/// moves is not kept either (`slower_from_rest`).
+/// moves is not kept either (`slower_from_rest`). Since tiny moves with no line after them are
+/// taken by the line before (path/micro.rs), the line ends where the hook ends and is fitted
+/// alone, at a top speed of 32 mm/s but on ramps that kept it at 12 (1.696 s against 1.568 s):
+/// a curve over one line whose ramps are clearly slower than the line's is not kept
+/// (`TIGHTER_RAMP` in path/smooth.rs).
 #[test]
 fn a_larger_tolerance_does_not_fit_a_long_line_and_a_hook_as_one_slow_curve() {
     let axes = [
@@ -192,6 +196,28 @@ G3 X21.4055 Y26.8339 Z5.1824 I-1.2268 J0.7590
 M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.04813, 0.18342]);
+}
+
+/// A case `tolerance_failure_rate` found (seed 1): an arc that nearly stops, a 0.21 mm line and
+/// a 1.4 µm one to the program's end. From 2.58 times the tolerance the run of the two lines was
+/// split at the hook, and the 0.21 mm line fitted alone as a curve bent towards it: above the
+/// line's top speed (7.8 mm/s), so kept, but on its own ramps it peaked at 4.3 mm/s where the
+/// line reached 5.6: 0.3787 s against 0.3657 s. A tiny move with no line after it to take it is
+/// now taken by the line before, which ends where it ends (path/micro.rs): 0.3534 s.
+#[test]
+fn a_larger_tolerance_does_not_bend_a_short_line_towards_a_hook_at_the_end() {
+    let axes = [
+        [9123.79, 392.83, 16334526.74],
+        [3093.02, 1943.9, 12506.76],
+        [2284.66, 1446.47, 4587775.04],
+    ];
+    let program = "G21 G90 G17 G64 F1760.5
+G3 X1.8348 Y3.1796 Z0.0000 I0.0007 J2.1188
+G1 X1.9893 Y3.0457 Z0.0281
+G1 X1.9899 Y3.0444 Z0.0283
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.011695, 0.030116]);
 }
 
 /// A case `tolerance_failure_rate` found (seed 1): five arcs. From 2.6 times the tolerance the

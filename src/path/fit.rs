@@ -16,7 +16,7 @@
 use super::chain::{piece_limits, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::corner_speed;
-use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span};
+use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span, TIGHTER_RAMP};
 use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
 use super::PathBlock;
 use super::{constant_speed_limit, line_limits};
@@ -231,13 +231,16 @@ impl SmoothBuilder {
             .then(|| piece_limits(&h.cell_array(), first.feed / h.speed_bound().max(1.0), m));
         // Kept unless it is surely slower than the moves it replaces, or than one line between
         // its corners, or, over several moves or fitted from rest (nothing before it since a
-        // stop), slower from rest to rest than the moves each from rest to rest.
+        // stop), slower from rest to rest than the moves each from rest to rest; over one line
+        // elsewhere, unless its ramps are clearly slower than the line's (`TIGHTER_RAMP` times
+        // its time from rest to rest): its top speed then says little of what it runs.
         let rest_to_rest = moves.len() > 1 || span.from == 0 && self.at_rest();
         let keep = |own: &CurveLimits| {
             let stops = stops_time(moves, m);
+            let from_rest = if rest_to_rest { stops } else { TIGHTER_RAMP * stops };
             let slower = slower_than_stops(h.length(), own.class, stops)
                 || slower_than_its_line(span, h.length(), own.class, m)
-                || rest_to_rest && slower_from_rest(h.length(), own, stops);
+                || slower_from_rest(h.length(), own, from_rest);
             !slower
         };
         if let Some(own) = fitted.filter(keep) {
@@ -294,7 +297,10 @@ fn slower_than_stops(length: f64, class: f64, stops: f64) -> bool {
 /// over a bend in a low-jerk axis may not reach its top speed in its length). Asked of every
 /// curve over several moves since a span may use the whole tolerance: a 2.46 mm line and the
 /// 0.26 mm hook before it, fitted as one curve at 33 mm/s whose top band leaves 0.4 mm/s², ran
-/// 0.36 s from rest to rest against its moves' 0.27 s (tests/monotone_found.rs).
+/// 0.36 s from rest to rest against its moves' 0.27 s (tests/monotone_found.rs). Over one line,
+/// against `TIGHTER_RAMP` times its line's: that 2.46 mm line, fitted alone once the hook after
+/// it was taken into it (micro.rs), had a top speed of 32 mm/s but ran at 12 where the line
+/// reaches 35.
 fn slower_from_rest(length: f64, own: &CurveLimits, stops: f64) -> bool {
     let b = Banded {
         kind: ProfileKind::Scurve7,

@@ -4,7 +4,9 @@
 //! starts where the tiny moves began instead. Each of its points is then at most the tiny moves'
 //! length from the programmed line (the two lines share their end; the starts differ by that
 //! much), so its tolerance is lowered by that length and every tick stays within the programmed
-//! tolerance.
+//! tolerance. Where no line follows (an arc, an exact-stop move, a stop or the program's end),
+//! the line before ends where the tiny moves end, by the same argument (smooth.rs,
+//! `SmoothBuilder::end_last_at`); only where neither can take them do they run as one line.
 
 use super::smooth::Move;
 use crate::geometry::Line;
@@ -43,11 +45,19 @@ impl MicroMoves {
         super::check::programmed(&p.last)
     }
 
-    /// The moves to run for `mv`, in order: none while it is held as tiny; otherwise `mv` (its
-    /// start moved back over the held moves), or the held moves as one line and then `mv`.
-    pub fn take(&mut self, mv: Move) -> [Option<Move>; 2] {
+    /// Whether the held tiny moves must run (`flush`) before `mv`: it is not a line that takes
+    /// them (an arc, an exact-stop move, or one whose tolerance is too small for them).
+    pub fn held_before(&self, mv: &Move) -> bool {
+        self.pending.is_some_and(|p| {
+            !matches!(mv.source, Source::Line(_)) || mv.exact || p.absorbed > MICRO_SHARE * mv.tolerance
+        })
+    }
+
+    /// The move to run for `mv` (after `held_before`'s tiny moves have run): none while it is
+    /// held as tiny; otherwise `mv`, its start moved back over the held moves.
+    pub fn take(&mut self, mv: Move) -> Option<Move> {
         let Source::Line(line) = mv.source else {
-            return [self.flush(), Some(mv)];
+            return Some(mv);
         };
         let absorbed = self.pending.map_or(0.0, |p| p.absorbed);
         let total = absorbed + line.length();
@@ -59,42 +69,63 @@ impl MicroMoves {
                 last: mv,
                 absorbed: total,
             });
-            return [None, None];
+            return None;
         }
-        match self.pending {
-            Some(p) if !mv.exact && p.absorbed <= MICRO_SHARE * mv.tolerance => {
-                self.pending = None;
-                let source = Source::Line(Line {
-                    start: p.start,
-                    end: line.end,
-                });
-                let tolerance = mv.tolerance - p.absorbed;
-                [
-                    Some(Move {
-                        source,
-                        tolerance,
-                        ..mv
-                    }),
-                    None,
-                ]
-            }
-            _ => [self.flush(), Some(mv)],
-        }
+        let Some(p) = self.pending.take() else {
+            return Some(mv);
+        };
+        debug_assert!(
+            !mv.exact && p.absorbed <= MICRO_SHARE * mv.tolerance,
+            "held_before ran them"
+        );
+        Some(Move {
+            source: Source::Line(Line {
+                start: p.start,
+                end: line.end,
+            }),
+            tolerance: mv.tolerance - p.absorbed,
+            ..mv
+        })
     }
 
-    /// The held tiny moves as one line (before a stop, an arc, an exact-stop move or the end),
-    /// so that the programmed end point is reached.
-    pub fn flush(&mut self) -> Option<Move> {
-        let p = self.pending.take()?;
-        let source = Source::Line(Line {
+    /// The held tiny moves (before a stop, an arc, an exact-stop move or the end), so that the
+    /// programmed end point is reached: the line before may end where they end, else they run
+    /// as one line.
+    pub fn flush(&mut self) -> Option<Tiny> {
+        self.pending.take().map(|p| Tiny {
             start: p.start,
             end: p.end,
-        });
-        let tolerance = p.last.tolerance - p.absorbed;
-        Some(Move {
-            source,
-            tolerance,
-            ..p.last
+            absorbed: p.absorbed,
+            last: p.last,
         })
+    }
+}
+
+/// Tiny moves taken from the hold: where they start and end, their length, and the last of
+/// them as programmed.
+#[derive(Clone, Copy, Debug)]
+pub struct Tiny {
+    pub start: Vec3,
+    pub end: Vec3,
+    pub absorbed: f64,
+    last: Move,
+}
+
+impl Tiny {
+    /// Whether a line of tolerance `tolerance` may take them (`MICRO_SHARE` of it).
+    pub fn fits(&self, tolerance: f64) -> bool {
+        self.absorbed <= MICRO_SHARE * tolerance
+    }
+
+    /// The tiny moves as one line, its tolerance lowered by their length.
+    pub fn line(&self) -> Move {
+        Move {
+            source: Source::Line(Line {
+                start: self.start,
+                end: self.end,
+            }),
+            tolerance: self.last.tolerance - self.absorbed,
+            ..self.last
+        }
     }
 }

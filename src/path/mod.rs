@@ -324,7 +324,10 @@ impl PathBuilder {
                 tolerance,
                 exact,
             };
-            for mv in self.micro.take(mv).into_iter().flatten() {
+            if self.micro.held_before(&mv) {
+                self.run_tiny(out);
+            }
+            if let Some(mv) = self.micro.take(mv) {
                 self.smooth.push(mv, &self.machine, out);
             }
             return;
@@ -386,10 +389,18 @@ impl PathBuilder {
 
     /// The smooth mode's stop: held tiny moves run first, so the programmed point is reached.
     fn stop_smooth(&mut self, out: &mut Vec<PathBlock>) {
-        if let Some(mv) = self.micro.flush() {
-            self.smooth.push(mv, &self.machine, out);
-        }
+        self.run_tiny(out);
         self.smooth.stop(&self.machine, out);
+    }
+
+    /// The held tiny moves where no line after takes them: the line before ends where they end,
+    /// or they run as one line.
+    fn run_tiny(&mut self, out: &mut Vec<PathBlock>) {
+        if let Some(tiny) = self.micro.flush() {
+            if !self.smooth.end_last_at(&tiny) {
+                self.smooth.push(tiny.line(), &self.machine, out);
+            }
+        }
     }
 
     fn release(&mut self, v_end_max: f64, out: &mut Vec<PathBlock>) {

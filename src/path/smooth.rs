@@ -23,6 +23,7 @@ use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::fit::VertexJet;
 use super::hermite::{Jet, BOUND_PIECES};
 use super::junction::{corner_ceiling, transition};
+use super::micro::Tiny;
 use super::source_map;
 use super::tolerance::{JOINT_D1_EPS, JOINT_D2_EPS, MIN_LENGTH};
 use super::{line_limits, max_bounds, PathBlock, Segment};
@@ -242,6 +243,34 @@ impl SmoothBuilder {
             }
         }
         self.run.push(mv);
+    }
+
+    /// The last move received ends where `tiny` moves after it end, if it is a line not yet
+    /// run that they start at and may join (micro.rs): its end moves by at most their length,
+    /// and so does each of its points, so its tolerance is lowered by that; its vertex with the
+    /// move before stays as smooth as it was. Whether it did.
+    pub(super) fn end_last_at(&mut self, tiny: &Tiny) -> bool {
+        let n = self.run.len();
+        let Some(last) = self.run.last() else { return false };
+        let Source::Line(line) = last.source else {
+            return false;
+        };
+        if last.exact || line.end != tiny.start || !tiny.fits(last.tolerance) {
+            return false;
+        }
+        let moved = Move {
+            source: Source::Line(Line {
+                start: line.start,
+                end: tiny.end,
+            }),
+            tolerance: last.tolerance - tiny.absorbed,
+            ..*last
+        };
+        if n >= 2 && smooth_vertex(&self.run[n - 2], last) != smooth_vertex(&self.run[n - 2], &moved) {
+            return false;
+        }
+        self.run[n - 1] = moved;
+        true
     }
 
     /// Stop at the end of everything received (dwell, M0, program end, an exact-stop move):
@@ -531,8 +560,9 @@ pub(super) fn joined_loss(
 
 /// A ramp to the slower side's speed this much longer within one side's limits than within the
 /// other's counts against joining them (below it, as between the fitted spans of one curve, whose
-/// limits differ a little, a chain still pays: they run through at one speed).
-const TIGHTER_RAMP: f64 = 1.25;
+/// limits differ a little, a chain still pays: they run through at one speed). Likewise a curve
+/// fitted over one line whose ramps are this much slower than the line's is not kept (fit.rs).
+pub(super) const TIGHTER_RAMP: f64 = 1.25;
 
 /// The vertex between two moves is smooth: two short line moves of one feed that turn gently,
 /// whatever their lengths (CAM output alternates 8 µm and 1 µm moves; the fit checks every chord).
