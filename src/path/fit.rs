@@ -22,7 +22,7 @@ use super::PathBlock;
 use super::{constant_speed_limit, line_limits};
 use crate::config::Machine;
 use crate::feed::bands::Banded;
-use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, ProfileKind};
+use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
 use crate::geometry::{add, cross, distance_to_segment, dot, norm, scale, sub, unit, Line, Source};
 use crate::Vec3;
 
@@ -302,6 +302,29 @@ fn slower_than_stops(length: f64, class: f64, stops: f64) -> bool {
 /// it was taken into it (micro.rs), had a top speed of 32 mm/s but ran at 12 where the line
 /// reaches 35.
 fn slower_from_rest(length: f64, own: &CurveLimits, stops: f64) -> bool {
+    // Planned within its tightest pair throughout, the curve takes at least as long as within
+    // its bands (each allows that pair): where even that is not slower, they need not be planned.
+    let (a_max, j_max) = own
+        .bands
+        .levels()
+        .iter()
+        .fold((own.limits.a_max, own.limits.j_max), |(a, j), b| {
+            (a.min(b.a_max), j.min(b.j_max))
+        });
+    let tightest = scurve7::plan(&BlockRequest {
+        length,
+        v_in: 0.0,
+        v_out: 0.0,
+        v_feed: own.class,
+        limits: Limits {
+            a_max,
+            j_max,
+            ..own.limits
+        },
+    });
+    if tightest.duration() <= stops {
+        return false;
+    }
     let b = Banded {
         kind: ProfileKind::Scurve7,
         top: &own.limits,
