@@ -244,6 +244,32 @@ M30
     assert_larger_tolerance_not_longer(program, axes, [0.008308, 0.021601]);
 }
 
+/// A case `tolerance_failure_rate` found (seed 4): two lines of 1.95 and 4.52 mm from the
+/// program's start, 10° apart, then three tiny arcs. At 3.44 times the tolerance the two lines
+/// were fitted as one curve: from rest to rest faster than the lines each from rest to rest, but
+/// the lines pass their corner at full speed, and the curve's ramps are slower on Z's jerk of
+/// 1e4 mm/s³: 0.686 s against 0.664 s. A whole run from rest is compared with its lines through
+/// the corners the curve passes at its top speed (path/fit.rs, `corners_time`).
+#[test]
+fn a_larger_tolerance_does_not_fit_two_lines_from_rest_that_pass_their_corner_at_speed() {
+    let axes = [
+        [1357.49, 1736.49, 822340721.65],
+        [1194.91, 702.71, 623118888.8],
+        [5821.23, 3549.59, 9990.1],
+    ];
+    let program = "G21 G90 G17 G64 F1160.9
+G1 X1.9255 Y0.2717 Z-0.1883
+G1 X6.2284 Y0.8773 Z-1.4229
+G2 X6.2360 Y0.8611 Z-1.4229 I0.0013 J-0.0093
+G3 X6.2357 Y0.8590 Z-1.4235 I0.0011 J-0.0012
+G2 X6.2301 Y0.8571 Z-1.4254 I-0.0032 J0.0002
+G1 X6.2285 Y0.8558 Z-1.4259
+G1 X2.7696 Y-1.8342 Z-1.0012
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.080556, 0.277274]);
+}
+
 /// A case `limit_failure_rate` found (seed 4): two lines, the second (1.25 mm) the last before
 /// the program's end. At 2.51 times every axis's velocity limit the corner stopped instead of
 /// taking its transition: its cost counted the second line as running on at 35 mm/s after a

@@ -235,8 +235,15 @@ impl SmoothBuilder {
         // elsewhere, unless its ramps are clearly slower than the line's (`TIGHTER_RAMP` times
         // its time from rest to rest): its top speed then says little of what it runs.
         let rest_to_rest = moves.len() > 1 || span.from == 0 && self.at_rest();
+        // A whole run from rest stands alone (a stop before it, a corner or a stop after): its
+        // lines would run through the corners the curve passes at its top speed, not each from
+        // rest to rest.
+        let alone = moves.len() > 1 && span.from == 0 && span.to == span.run.len() && self.at_rest();
         let keep = |own: &CurveLimits| {
-            let stops = stops_time(moves, m);
+            let mut stops = stops_time(moves, m);
+            if alone {
+                stops = stops.min(corners_time(moves, own.class, m));
+            }
             let from_rest = if rest_to_rest { stops } else { TIGHTER_RAMP * stops };
             let slower = slower_than_stops(h.length(), own.class, stops)
                 || slower_than_its_line(span, h.length(), own.class, m)
@@ -282,6 +289,32 @@ fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool
 /// the lines' time, corners and all.
 fn stops_time(moves: &[Move], m: &Machine) -> f64 {
     moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum()
+}
+
+/// Time of `moves` from rest to rest through their corners: each corner at its transition's
+/// ceiling (`corner_speed`) where that is at least `class`, else a stop (a slower transition's
+/// own ramps are not counted); each line within what it reaches from the speed before it and
+/// to the speed after (a pass forward and one back).
+fn corners_time(moves: &[Move], class: f64, m: &Machine) -> f64 {
+    let lines: Vec<Line> = moves.iter().map(line_of).collect();
+    let limits: Vec<Limits> = lines.iter().map(|l| line_limits(l.direction(), m)).collect();
+    let n = moves.len();
+    let mut v = vec![0.0; n + 1];
+    for i in 1..n {
+        let c = corner_speed(&lines[i - 1], &lines[i], moves[i].tolerance, moves[i].feed, m);
+        let reach = scurve7::max_exit(lines[i - 1].length(), v[i - 1], &limits[i - 1]);
+        v[i] = if c >= class {
+            c.min(line_speed(&moves[i - 1], m))
+                .min(line_speed(&moves[i], m))
+                .min(reach)
+        } else {
+            0.0
+        };
+    }
+    for i in (1..n).rev() {
+        v[i] = v[i].min(scurve7::max_entry(lines[i].length(), v[i + 1], &limits[i]));
+    }
+    (0..n).map(|i| line_time(&moves[i], v[i], v[i + 1], m)).sum()
 }
 
 /// Whether a curve of `length` and top speed `class` is surely slower than its moves, whose
@@ -338,7 +371,7 @@ fn slower_from_rest(length: f64, own: &CurveLimits, stops: f64) -> bool {
 /// (its feed and eq. 11), within its axis limits.
 fn line_time(mv: &Move, v_in: f64, v_out: f64, m: &Machine) -> f64 {
     let l = line_of(mv);
-    let v_feed = constant_speed_limit(&Curve::Line(l).derivative_bounds(), m).min(mv.feed);
+    let v_feed = line_speed(mv, m);
     scurve7::plan(&BlockRequest {
         length: l.length(),
         v_in: v_in.min(v_feed),
@@ -347,6 +380,11 @@ fn line_time(mv: &Move, v_in: f64, v_out: f64, m: &Machine) -> f64 {
         limits: line_limits(l.direction(), m),
     })
     .duration()
+}
+
+/// The own speed of the line of `mv`: its feed, within eq. 11.
+fn line_speed(mv: &Move, m: &Machine) -> f64 {
+    constant_speed_limit(&Curve::Line(line_of(mv)).derivative_bounds(), m).min(mv.feed)
 }
 
 /// The moves `from` … `to` of a run, being fitted.
