@@ -20,18 +20,34 @@ const MICRO_SHARE: f64 = 0.1;
 /// Tiny line moves held until the next line absorbs them.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize)]
 pub struct MicroMoves {
-    pending: Option<Pending>,
+    pending: Option<Tiny>,
 }
 
+/// Tiny moves held, or taken from the hold (`MicroMoves::flush`).
 #[derive(Clone, Copy, Debug, Serialize, Deserialize)]
-struct Pending {
+pub struct Tiny {
     /// Where the first tiny move began (the end of the last move run) and the last one ends.
-    start: Vec3,
+    pub start: Vec3,
     end: Vec3,
     /// The last tiny move, as programmed.
     last: Move,
     /// Their length added up.
     absorbed: f64,
+}
+
+/// Whether a line of tolerance `tolerance` may take tiny moves of length `absorbed`.
+fn fits(absorbed: f64, tolerance: f64) -> bool {
+    absorbed <= MICRO_SHARE * tolerance
+}
+
+/// `mv` as the line from `start` to `end`, taking tiny moves of length `absorbed`: each of its
+/// points lies at most that far from one of `mv`'s, so its tolerance is lowered by that.
+fn line_taking(mv: &Move, start: Vec3, end: Vec3, absorbed: f64) -> Move {
+    Move {
+        source: Source::Line(Line { start, end }),
+        tolerance: mv.tolerance - absorbed,
+        ..*mv
+    }
 }
 
 impl MicroMoves {
@@ -49,7 +65,7 @@ impl MicroMoves {
     /// them (an arc, an exact-stop move, or one whose tolerance is too small for them).
     pub fn held_before(&self, mv: &Move) -> bool {
         self.pending.is_some_and(|p| {
-            !matches!(mv.source, Source::Line(_)) || mv.exact || p.absorbed > MICRO_SHARE * mv.tolerance
+            !matches!(mv.source, Source::Line(_)) || mv.exact || !fits(p.absorbed, mv.tolerance)
         })
     }
 
@@ -61,9 +77,9 @@ impl MicroMoves {
         };
         let absorbed = self.pending.map_or(0.0, |p| p.absorbed);
         let total = absorbed + line.length();
-        if !mv.exact && total <= MICRO_SHARE * mv.tolerance {
+        if !mv.exact && fits(total, mv.tolerance) {
             let start = self.pending.map_or(line.start, |p| p.start);
-            self.pending = Some(Pending {
+            self.pending = Some(Tiny {
                 start,
                 end: line.end,
                 last: mv,
@@ -75,57 +91,33 @@ impl MicroMoves {
             return Some(mv);
         };
         debug_assert!(
-            !mv.exact && p.absorbed <= MICRO_SHARE * mv.tolerance,
+            !mv.exact && fits(p.absorbed, mv.tolerance),
             "held_before ran them"
         );
-        Some(Move {
-            source: Source::Line(Line {
-                start: p.start,
-                end: line.end,
-            }),
-            tolerance: mv.tolerance - p.absorbed,
-            ..mv
-        })
+        Some(line_taking(&mv, p.start, line.end, p.absorbed))
     }
 
     /// The held tiny moves (before a stop, an arc, an exact-stop move or the end), so that the
     /// programmed end point is reached: the line before may end where they end, else they run
     /// as one line.
     pub fn flush(&mut self) -> Option<Tiny> {
-        self.pending.take().map(|p| Tiny {
-            start: p.start,
-            end: p.end,
-            absorbed: p.absorbed,
-            last: p.last,
-        })
+        self.pending.take()
     }
-}
-
-/// Tiny moves taken from the hold: where they start and end, their length, and the last of
-/// them as programmed.
-#[derive(Clone, Copy, Debug)]
-pub struct Tiny {
-    pub start: Vec3,
-    pub end: Vec3,
-    pub absorbed: f64,
-    last: Move,
 }
 
 impl Tiny {
     /// Whether a line of tolerance `tolerance` may take them (`MICRO_SHARE` of it).
     pub fn fits(&self, tolerance: f64) -> bool {
-        self.absorbed <= MICRO_SHARE * tolerance
+        fits(self.absorbed, tolerance)
     }
 
     /// The tiny moves as one line, its tolerance lowered by their length.
     pub fn line(&self) -> Move {
-        Move {
-            source: Source::Line(Line {
-                start: self.start,
-                end: self.end,
-            }),
-            tolerance: self.last.tolerance - self.absorbed,
-            ..self.last
-        }
+        line_taking(&self.last, self.start, self.end, self.absorbed)
+    }
+
+    /// The line `before` them, from `start`, ending where they end (it takes them).
+    pub fn ending(&self, before: &Move, start: Vec3) -> Move {
+        line_taking(before, start, self.end, self.absorbed)
     }
 }

@@ -258,14 +258,7 @@ impl SmoothBuilder {
         if last.exact || line.end != tiny.start || !tiny.fits(last.tolerance) {
             return false;
         }
-        let moved = Move {
-            source: Source::Line(Line {
-                start: line.start,
-                end: tiny.end,
-            }),
-            tolerance: last.tolerance - tiny.absorbed,
-            ..*last
-        };
+        let moved = tiny.ending(last, line.start);
         if n >= 2 && smooth_vertex(&self.run[n - 2], last) != smooth_vertex(&self.run[n - 2], &moved) {
             return false;
         }
