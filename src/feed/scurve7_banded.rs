@@ -222,10 +222,18 @@ fn speeds(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, 
         let v_hi = v_in.max(v_out);
         // Above both ends, each ramp rises from its end: the forward envelopes built once (one
         // when the ends are equal, the two ramps then the same sum).
-        let (up, down) = (Rise::from(b, v_in), (v_out != v_in).then(|| Rise::from(b, v_out)));
+        // Each rise is a few kB: built where it stays.
+        let up = Rise::from(b, v_in);
+        let down_rise;
+        let down = if v_out != v_in {
+            down_rise = Rise::from(b, v_out);
+            Some(&down_rise)
+        } else {
+            None
+        };
         let total = |v: f64| {
             let d_up = up.time_distance(v).1;
-            d_up + down.as_ref().map_or(d_up, |r| r.time_distance(v).1)
+            d_up + down.map_or(d_up, |r| r.time_distance(v).1)
         };
         let v_c = if v_feed <= v_hi {
             v_feed.max(v_hi)
@@ -239,7 +247,7 @@ fn speeds(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, 
                 let g = |v: f64| total(v) - length;
                 // Both ramps in one band: scurve7's peak there.
                 let band = |r: &Rise| r.first_band();
-                let seed = match (band(&up), down.as_ref().map_or(band(&up), band)) {
+                let seed = match (band(&up), down.map_or(band(&up), band)) {
                     (Some((top, a, j)), Some(other)) if other.0 == top => {
                         let x0 = scurve7::solve_peak(length, v_in, v_out, v_feed, a, j);
                         (x0 < top).then_some(x0)

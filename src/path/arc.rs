@@ -92,27 +92,28 @@ pub struct Shares {
 /// for arcs above, the speed never above `v_cap`. The largest v_max whose budget keeps the
 /// tangential shares is solved in closed form (`Budget::max_speed`: each constraint is monotone).
 pub fn curve_limits(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine, shares: Shares) -> Limits {
-    let frame = Frame::of(cells, rho, v_cap, machine);
-    let (v, (a_c, j_c)) = frame.budget(cells, machine, shares).max_speed(frame.v0);
-    Limits {
-        v_max: v,
-        a_max: a_c,
-        j_max: j_c,
-        snap_max: machine.max_snap,
-    }
+    Frame::of(cells, rho, v_cap, machine).limits(cells, machine, shares)
 }
 
 /// What every budget of a curve starts from: the speed bound without tangential motion (axis
 /// limits, chord error, cap) and the free tangential acceleration and jerk A_i/|d1_i|, J_i/|d1_i|.
-struct Frame {
+/// Worked out once per curve and cap: its top speed, its bands and its ceiling all start here.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
     v0: f64,
     a_free: f64,
     j_free: f64,
 }
 
 impl Frame {
-    fn of(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> Frame {
-        let b = &max_bounds(cells);
+    /// The frame of the curve with derivative bound cells `cells` and smallest radius of
+    /// curvature `rho` (chord error), its speed never above `v_cap`.
+    pub fn of(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> Frame {
+        Frame::of_bounds(&max_bounds(cells), rho, v_cap, machine)
+    }
+
+    /// `of`, given the largest of the cells' bounds (`max_bounds`).
+    pub fn of_bounds(b: &[Vec3; 3], rho: f64, v_cap: f64, machine: &Machine) -> Frame {
         let v0 = constant_speed_limit(b, machine)
             .min(chord_error_speed(
                 rho,
@@ -134,6 +135,24 @@ impl Frame {
             j_free = j_free.min(j);
         }
         Frame { v0, a_free, j_free }
+    }
+
+    /// `curve_limits` of its curve (`cells`).
+    fn limits(&self, cells: &[[Vec3; 3]], machine: &Machine, shares: Shares) -> Limits {
+        let (v, (a_c, j_c)) = self.budget(cells, machine, shares).max_speed(self.v0);
+        Limits {
+            v_max: v,
+            a_max: a_c,
+            j_max: j_c,
+            snap_max: machine.max_snap,
+        }
+    }
+
+    /// A bound from above of its curve's `curve_top_speed` without the budget's solves: the
+    /// speed with no tangential motion (axis limits at constant speed, chord error, cap), where
+    /// every budget's search starts and below which it only falls.
+    pub fn ceiling(&self) -> f64 {
+        self.v0
     }
 
     fn budget<'a>(&self, cells: &'a [[Vec3; 3]], machine: &'a Machine, shares: Shares) -> Budget<'a> {
@@ -238,9 +257,8 @@ fn grid_at_or_above(v: f64) -> f64 {
 /// `known`: what `curve_top_speed` solved for the same curve and cap, where it did (not solved
 /// again).
 pub fn curve_bands(
+    frame: &Frame,
     cells: &[[Vec3; 3]],
-    rho: f64,
-    v_cap: f64,
     machine: &Machine,
     known: Option<TopSpeeds>,
 ) -> (Limits, Bands) {
@@ -251,12 +269,9 @@ pub fn curve_bands(
             v_top,
         }),
         _,
-    ) = top(cells, rho, v_cap, machine, known)
+    ) = top(frame, cells, machine, known)
     else {
-        return (
-            curve_limits(cells, rho, v_cap, machine, NO_SHARES),
-            Bands::default(),
-        );
+        return (frame.limits(cells, machine, NO_SHARES), Bands::default());
     };
     let speeds = band_speeds(v_top, v_curve);
     let (a, j) = band_pairs(&budget, &speeds);
@@ -275,10 +290,7 @@ pub fn curve_bands(
         snap_max: machine.max_snap,
     };
     if a <= 0.0 || j <= 0.0 {
-        return (
-            curve_limits(cells, rho, v_cap, machine, NO_SHARES),
-            Bands::default(),
-        );
+        return (frame.limits(cells, machine, NO_SHARES), Bands::default());
     }
     (limits, Bands::keep_below(&limits, levels))
 }
@@ -298,13 +310,11 @@ pub type TopSpeeds = Option<(f64, f64)>;
 /// The curve's `Top`, or None where it has no budget (its plain limits then), from its speeds
 /// where they are `known`; and those speeds.
 fn top<'a>(
+    frame: &Frame,
     cells: &'a [[Vec3; 3]],
-    rho: f64,
-    v_cap: f64,
     machine: &'a Machine,
     known: Option<TopSpeeds>,
 ) -> (Option<Top<'a>>, TopSpeeds) {
-    let frame = Frame::of(cells, rho, v_cap, machine);
     let budget = frame.budget(cells, machine, NO_SHARES);
     let speeds = known.unwrap_or_else(|| {
         let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
@@ -330,9 +340,9 @@ fn top<'a>(
 /// The top speed of `curve_bands`' limits alone: the top band's pair decides whether the curve
 /// has bands (the pair of each other band is not needed for it).
 /// Also what it solved for the top (`TopSpeeds`), which `curve_bands` takes.
-pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> (f64, TopSpeeds) {
-    let plain = || curve_limits(cells, rho, v_cap, machine, NO_SHARES).v_max;
-    let (t, speeds) = top(cells, rho, v_cap, machine, None);
+pub fn curve_top_speed(frame: &Frame, cells: &[[Vec3; 3]], machine: &Machine) -> (f64, TopSpeeds) {
+    let plain = || frame.limits(cells, machine, NO_SHARES).v_max;
+    let (t, speeds) = top(frame, cells, machine, None);
     let Some(t) = t else {
         return (plain(), speeds);
     };
@@ -343,13 +353,6 @@ pub fn curve_top_speed(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Mach
     } else {
         (t.v_top, speeds)
     }
-}
-
-/// A bound from above of `curve_top_speed` without its budget's solves: the speed with no
-/// tangential motion (axis limits at constant speed, chord error, cap), where every budget's
-/// search starts and below which it only falls.
-pub fn curve_speed_ceiling(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> f64 {
-    Frame::of(cells, rho, v_cap, machine).v0
 }
 
 /// The pair (A, J) a band ending at each speed of `v` takes (`curve_bands`): the acceleration
@@ -525,7 +528,8 @@ mod tests {
                 top * (1.0 + 2e-9),
                 2.0 * top,
             ] {
-                let ours = curve_bands(&cells, rho, cap, &m, None);
+                let frame = Frame::of(&cells, rho, cap, &m);
+                let ours = curve_bands(&frame, &cells, &m, None);
                 let reference = bands_by_scalar_passes(&cells, rho, cap, &m);
                 assert_eq!(format!("{ours:?}"), format!("{reference:?}"), "cap {cap}");
                 assert_eq!(ours.0.v_max.to_bits(), reference.0.v_max.to_bits());
@@ -536,11 +540,11 @@ mod tests {
                         .collect::<Vec<_>>()
                 };
                 assert_eq!(levels(&ours.1), levels(&reference.1));
-                let (top_speed, speeds) = curve_top_speed(&cells, rho, cap, &m);
+                let (top_speed, speeds) = curve_top_speed(&frame, &cells, &m);
                 assert_eq!(top_speed.to_bits(), ours.0.v_max.to_bits());
-                let known = curve_bands(&cells, rho, cap, &m, Some(speeds));
+                let known = curve_bands(&frame, &cells, &m, Some(speeds));
                 assert_eq!(format!("{known:?}"), format!("{ours:?}"), "cap {cap}");
-                assert!(curve_speed_ceiling(&cells, rho, cap, &m) >= ours.0.v_max);
+                assert!(frame.ceiling() >= ours.0.v_max);
                 banded += usize::from(!ours.1.is_empty());
                 let off_grid = |l: &Band| grid_at_or_above(l.v_top) != l.v_top;
                 inner_edges += ours.1.levels().iter().filter(|l| off_grid(l)).count();

@@ -3,7 +3,7 @@
 //! path acceleration need not be zero at piece ends, so a run of micro-segments accelerates as
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
-use super::arc::{curve_bands, curve_speed_ceiling, curve_top_speed, TopSpeeds};
+use super::arc::{curve_bands, curve_top_speed, Frame, TopSpeeds};
 use super::{hermite::Hermite, max_bounds};
 use crate::config::Machine;
 use crate::feed::bands::Bands;
@@ -213,17 +213,25 @@ pub struct CurveLimits {
 /// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped
 /// at `v_cap` (`curve_bands`); its class is its top speed.
 pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
-    piece_limits_known(cells, v_cap, m, None)
+    piece_limits_known(cells, &piece_frame(cells, v_cap, m), m, None)
 }
 
-/// `piece_limits`, given what `piece_speed` solved for the same cells and cap (or None).
+/// The frame of a piece's limits (`arc::Frame`): what its limits, its top speed and the ceiling
+/// of that speed all start from.
+pub(super) fn piece_frame(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Frame {
+    let b = max_bounds(cells);
+    Frame::of_bounds(&b, smallest_radius(&b), v_cap, m)
+}
+
+/// `piece_limits` in its `frame`, given what `piece_speed` solved for the same cells and frame
+/// (or None).
 pub(super) fn piece_limits_known(
     cells: &[[Vec3; 3]],
-    v_cap: f64,
+    frame: &Frame,
     m: &Machine,
     known: Option<TopSpeeds>,
 ) -> CurveLimits {
-    let (limits, bands) = curve_bands(cells, smallest_radius(cells), v_cap, m, known);
+    let (limits, bands) = curve_bands(frame, cells, m, known);
     CurveLimits {
         limits,
         bands,
@@ -231,19 +239,16 @@ pub(super) fn piece_limits_known(
     }
 }
 
-/// The top speed of `piece_limits` alone (`curve_top_speed`), and what it solved for it.
-pub(super) fn piece_speed(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> (f64, TopSpeeds) {
-    curve_top_speed(cells, smallest_radius(cells), v_cap, m)
+/// The top speed of `piece_limits` alone (`curve_top_speed`) in its `frame`, and what it solved
+/// for it.
+pub(super) fn piece_speed(cells: &[[Vec3; 3]], frame: &Frame, m: &Machine) -> (f64, TopSpeeds) {
+    curve_top_speed(frame, cells, m)
 }
 
-/// A bound of `piece_speed` from above, cheaper than it (`curve_speed_ceiling`).
-pub(super) fn piece_speed_ceiling(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> f64 {
-    curve_speed_ceiling(cells, smallest_radius(cells), v_cap, m)
-}
-
-/// The smallest radius of curvature the cells allow (1/|p''| for the largest |p''|).
-fn smallest_radius(cells: &[[Vec3; 3]]) -> f64 {
-    let k = norm(max_bounds(cells)[1]);
+/// The smallest radius of curvature the cells allow, from their largest bounds (`max_bounds`):
+/// 1/|p''| for the largest |p''|.
+fn smallest_radius(bounds: &[Vec3; 3]) -> f64 {
+    let k = norm(bounds[1]);
     if k > 0.0 {
         1.0 / k
     } else {

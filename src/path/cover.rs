@@ -51,8 +51,8 @@ impl Guards {
 
     /// Sample k (0…`TRANSITION_SAMPLES`).
     pub(super) fn sample(&self, h: &Hermite, k: usize) -> Sample {
-        let g = h.eval(self.step * k as f64);
-        Sample { p: g.p, d1: g.d1 }
+        let (p, d1) = h.point_tangent(self.step * k as f64);
+        Sample { p, d1 }
     }
 
     /// Sample `s`, at distance `d` from `mv` (`Source::distance`), keeps the half-steps about

@@ -25,6 +25,7 @@ use crate::feed::bands::Banded;
 use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
 use crate::geometry::{add, cross, distance_to_segment, dot, norm, scale, sub, unit, Line, Source};
 use crate::Vec3;
+use std::cell::Cell;
 
 /// Parts of each chord's range whose control points are checked.
 const CHECK_PIECES: usize = 4;
@@ -79,10 +80,13 @@ fn circle_jet_at_end(a: Vec3, b: Vec3, c: Vec3, reverse: bool) -> (Vec3, Vec3) {
     (unit(sub(toward, scale(rn, dot(toward, rn)))), k)
 }
 
-/// The run's vertices (0 … moves) and the path length to each.
+/// The run's vertices (0 … moves), the path length to each, and the speed at each inner
+/// vertex as a corner between its lines (`corner_speed`), solved when first asked: a vertex is
+/// the end of one fitted line and the start of the next.
 struct Vertices {
     p: Vec<Vec3>,
     s: Vec<f64>,
+    corners: Vec<Cell<Option<f64>>>,
 }
 
 impl Vertices {
@@ -95,7 +99,20 @@ impl Vertices {
             *acc += mv.source.length();
             Some(*acc)
         }));
-        Vertices { p, s }
+        let corners = vec![Cell::new(None); run.len() + 1];
+        Vertices { p, s, corners }
+    }
+
+    /// The speed at inner vertex k of `run` (the run these vertices are of) as a corner between
+    /// its lines.
+    fn corner_speed(&self, run: &[Move], k: usize, m: &Machine) -> f64 {
+        if let Some(v) = self.corners[k].get() {
+            return v;
+        }
+        let (a, b) = (&run[k - 1], &run[k]);
+        let v = corner_speed(&line_of(a), &line_of(b), b.tolerance, b.feed, m);
+        self.corners[k].set(Some(v));
+        v
     }
 
     /// The jet at vertex `i` from the circle through it and the vertices `lo` before and `hi`
@@ -242,7 +259,7 @@ impl SmoothBuilder {
         let keep = |own: &CurveLimits| {
             let mut stops = stops_time(moves, m);
             if alone {
-                stops = stops.min(corners_time(moves, own.class, m));
+                stops = stops.min(corners_time(span, own.class, m));
             }
             let from_rest = if rest_to_rest { stops } else { TIGHTER_RAMP * stops };
             let slower = slower_than_stops(h.length(), own.class, stops)
@@ -275,8 +292,7 @@ fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool
     }
     let corner = |k: usize| {
         if k >= 1 && k < span.run.len() {
-            let (a, b) = (&span.run[k - 1], &span.run[k]);
-            corner_speed(&line_of(a), &line_of(b), b.tolerance, b.feed, m)
+            span.vertices.corner_speed(span.run, k, m)
         } else {
             class
         }
@@ -295,13 +311,14 @@ fn stops_time(moves: &[Move], m: &Machine) -> f64 {
 /// ceiling (`corner_speed`) where that is at least `class`, else a stop (a slower transition's
 /// own ramps are not counted); each line within what it reaches from the speed before it and
 /// to the speed after (a pass forward and one back).
-fn corners_time(moves: &[Move], class: f64, m: &Machine) -> f64 {
+fn corners_time(span: Fit, class: f64, m: &Machine) -> f64 {
+    let moves = &span.run[span.from..span.to];
     let lines: Vec<Line> = moves.iter().map(line_of).collect();
     let limits: Vec<Limits> = lines.iter().map(|l| line_limits(l.direction(), m)).collect();
     let n = moves.len();
     let mut v = vec![0.0; n + 1];
     for i in 1..n {
-        let c = corner_speed(&lines[i - 1], &lines[i], moves[i].tolerance, moves[i].feed, m);
+        let c = span.vertices.corner_speed(span.run, span.from + i, m);
         let reach = scurve7::max_exit(lines[i - 1].length(), v[i - 1], &limits[i - 1]);
         v[i] = if c >= class {
             c.min(line_speed(&moves[i - 1], m))

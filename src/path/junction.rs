@@ -9,8 +9,8 @@
 
 mod cost;
 
-use super::arc::TopSpeeds;
-use super::chain::{piece_limits_known, piece_speed, piece_speed_ceiling, Curve, CurveLimits};
+use super::arc::{Frame, TopSpeeds};
+use super::chain::{piece_frame, piece_limits_known, piece_speed, Curve, CurveLimits};
 use super::cover::Guards;
 use super::hermite::{Hermite, Jet, BOUND_PIECES};
 use super::slowest_axis;
@@ -32,7 +32,7 @@ const MAX_SHRINKS: usize = 60;
 /// top). A tiny sharp transition allows so little speed that stopping is quicker; a long gentle
 /// one (lines meeting at a rounding kink) runs at the feed.
 fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<(f64, Own)> {
-    let mut own = Own::of(h, feed);
+    let mut own = Own::of(h, feed, m);
     let t_stop = scurve7::plan(&BlockRequest {
         length: h.length(),
         v_in: 0.0,
@@ -45,40 +45,43 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<(f64, Own)>
     (h.length() <= v_max * t_stop).then_some((v_max, own))
 }
 
-/// The derivative bound cells of a transition, the speed its feed caps it at (`feed/σ`), and
-/// what solving its top speed found (its limits then start from there).
+/// The derivative bound cells of a transition, the frame of its limits at the speed its feed
+/// caps it at (`feed/σ`), and what solving its top speed found (its limits then start from
+/// there).
 struct Own {
     cells: [[Vec3; 3]; BOUND_PIECES],
-    cap: f64,
+    frame: Frame,
     top: Option<TopSpeeds>,
 }
 
 impl Own {
-    fn of(h: &Hermite, feed: f64) -> Own {
+    fn of(h: &Hermite, feed: f64, m: &Machine) -> Own {
+        let cells = h.cell_array();
+        let frame = piece_frame(&cells, feed / h.speed_bound().max(1.0), m);
         Own {
-            cells: h.cell_array(),
-            cap: feed / h.speed_bound().max(1.0),
+            cells,
+            frame,
             top: None,
         }
     }
 
     /// Its limits (`piece_limits`).
     fn limits(&self, m: &Machine) -> CurveLimits {
-        piece_limits_known(&self.cells, self.cap, m, self.top)
+        piece_limits_known(&self.cells, &self.frame, m, self.top)
     }
 
     /// The top speed of its limits alone (the cuts are compared by it; only the chosen one's
     /// bands are computed).
     fn speed(&mut self, m: &Machine) -> f64 {
-        let (v, top) = piece_speed(&self.cells, self.cap, m);
+        let (v, top) = piece_speed(&self.cells, &self.frame, m);
         self.top = Some(top);
         v
     }
 
     /// A bound of `speed` from above without the budget's solves: where even that decides a
     /// comparison, the speed is not solved.
-    fn ceiling(&self, m: &Machine) -> f64 {
-        piece_speed_ceiling(&self.cells, self.cap, m)
+    fn ceiling(&self) -> f64 {
+        self.frame.ceiling()
     }
 }
 
@@ -108,7 +111,7 @@ pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: 
         jet(add(corner, scale(t_out, d)), t_out),
         2.0 * d,
     );
-    Own::of(&h, feed).speed(m)
+    Own::of(&h, feed, m).speed(m)
 }
 
 /// The ceiling of the speed of the transition between `held` and `next` as the search starts
@@ -125,7 +128,7 @@ pub(super) fn corner_ceiling(held: &Span, next: &Span, m: &Machine) -> f64 {
         return 0.0;
     }
     let feed = held.last.feed.min(next.first.feed);
-    Own::of(&cut_curve(held, next, d, 1.0), feed).ceiling(m)
+    Own::of(&cut_curve(held, next, d, 1.0), feed, m).ceiling()
 }
 
 /// The corner between `held` and `next`: how much it turns, |t_out − t_in|, and its reach, the
@@ -459,10 +462,10 @@ impl Search<'_> {
         // The cut at index k if it is within the tolerance and cheaper than `best` by `SAVING`.
         let try_at = |k: i32, best: &Found| {
             let (d, h) = self.at(k, first, share)?;
-            let mut own = Own::of(&h, self.feed);
+            let mut own = Own::of(&h, self.feed, m);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
-            let v_ceiling = self.speed(d, own.ceiling(m));
+            let v_ceiling = self.speed(d, own.ceiling());
             let at_ceiling = local_cost(d, h.length(), v_ceiling, self.sides);
             if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
                 return None;
