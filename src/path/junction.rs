@@ -21,7 +21,7 @@ use crate::feed::scurve7_banded::Rise;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
 use crate::Vec3;
-use cost::{joined_sides, local_cost, side, End, Far, Side};
+use cost::{cost_floor, joined_sides, local_cost, side, End, Far, Side};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -466,8 +466,14 @@ impl Search<'_> {
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
             let v_ceiling = self.speed(d, own.ceiling());
+            let prune = best.cost - SAVING + PRUNE_MARGIN * best.cost.abs();
+            // Most of them are pruned by a bound of that cost from below (`cost_floor`), without
+            // the banded ramps' solves.
+            if cost_floor(d, h.length(), v_ceiling, self.sides).is_some_and(|c| c >= prune) {
+                return None;
+            }
             let at_ceiling = local_cost(d, h.length(), v_ceiling, self.sides);
-            if at_ceiling >= best.cost - SAVING + PRUNE_MARGIN * best.cost.abs() {
+            if at_ceiling >= prune {
                 return None;
             }
             let v_max = own.speed(m);

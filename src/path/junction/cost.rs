@@ -138,6 +138,34 @@ pub(super) fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 
     cost
 }
 
+/// A bound from below of `local_cost` at the same cut and speed, without the banded ramps'
+/// solves: each side's ramp within the widest of its pairs (its bands only widen its limits
+/// below its top, so no ramp within them is faster: T − D/v_side is no smaller), in closed
+/// form, less the most that `local_cost`'s ramp over what is left of the side (`ramp_within`,
+/// to `RAMP_FIT` of that length) can fall short of the exact one: RAMP_FIT of that length at
+/// the ramp's start speed. None where a side's far end is known (its block is planned there).
+pub(super) fn cost_floor(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> Option<f64> {
+    let mut cost = length / v.max(f64::MIN_POSITIVE);
+    for s in sides {
+        if s.far.is_some() {
+            return None;
+        }
+        let v_side = s.v.max(f64::MIN_POSITIVE);
+        cost -= d / v_side;
+        if v < v_side {
+            let rest = (s.length - d).max(0.0);
+            let widest = s.bands.levels().iter().fold(s.top, |mut l, b| {
+                l.a_max = l.a_max.max(b.a_max);
+                l.j_max = l.j_max.max(b.j_max);
+                l
+            });
+            let (t, x) = scurve7::rise_within(v.max(0.0), v_side, rest, &widest);
+            cost += t - x / v_side - RAMP_FIT * rest / v.max(f64::MIN_POSITIVE);
+        }
+    }
+    Some(cost)
+}
+
 /// Time and distance of the side's rise from v0 up to `v_side`, or over `rest` where it ends
 /// before.
 fn rise(banded: &Banded, v0: f64, v_side: f64, rest: f64) -> (f64, f64) {
