@@ -13,7 +13,7 @@
 //! vertices are neither knots nor split points, and a span that does not fit over them is the
 //! line itself, whose junctions the transitions then cut along its whole length.
 
-use super::chain::{piece_limits, Curve, CurveLimits, Piece};
+use super::chain::{piece_frame, piece_limits_known, piece_speed, Curve, CurveLimits, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::corner_speed;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span, TIGHTER_RAMP};
@@ -244,8 +244,6 @@ impl SmoothBuilder {
             jet(end_of(&last), b, &last),
             lambda,
         );
-        let fitted = within_chords(&h, moves)
-            .then(|| piece_limits(&h.cell_array(), first.feed / h.speed_bound().max(1.0), m));
         // Kept unless it is surely slower than the moves it replaces, or than one line between
         // its corners, or, over several moves or fitted from rest (nothing before it since a
         // stop), slower from rest to rest than the moves each from rest to rest; over one line
@@ -256,18 +254,25 @@ impl SmoothBuilder {
         // lines would run through the corners the curve passes at its top speed, not each from
         // rest to rest.
         let alone = moves.len() > 1 && span.from == 0 && span.to == span.run.len() && self.at_rest();
-        let keep = |own: &CurveLimits| {
+        // Its limits: its top speed first, which the first two tests take; its bands only for
+        // the third, and where it is kept (those of a curve the first two reject are not needed).
+        let kept = || {
+            let cells = h.cell_array();
+            let frame = piece_frame(&cells, first.feed / h.speed_bound().max(1.0), m);
+            let (class, top) = piece_speed(&cells, &frame, m);
             let mut stops = stops_time(moves, m);
             if alone {
-                stops = stops.min(corners_time(span, own.class, m));
+                stops = stops.min(corners_time(span, class, m));
             }
+            if slower_than_stops(h.length(), class, stops) || slower_than_its_line(span, h.length(), class, m)
+            {
+                return None;
+            }
+            let own = piece_limits_known(&cells, &frame, m, Some(top));
             let from_rest = if rest_to_rest { stops } else { TIGHTER_RAMP * stops };
-            let slower = slower_than_stops(h.length(), own.class, stops)
-                || slower_than_its_line(span, h.length(), own.class, m)
-                || slower_from_rest(h.length(), own, from_rest);
-            !slower
+            (!slower_from_rest(h.length(), &own, from_rest)).then_some(own)
         };
-        if let Some(own) = fitted.filter(keep) {
+        if let Some(own) = within_chords(&h, moves).then(kept).flatten() {
             let mut span = Span::fitted(Piece::whole(Curve::Hermite(h), first.line), moves);
             span.own = Some(own);
             self.junction(span, m, out);
