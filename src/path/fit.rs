@@ -312,10 +312,10 @@ fn stops_time(moves: &[Move], m: &Machine) -> f64 {
     moves.iter().map(|mv| line_time(mv, 0.0, 0.0, m)).sum()
 }
 
-/// Time of `moves` from rest to rest through their corners: each corner at its transition's
-/// ceiling (`corner_speed`) where that is at least `class`, else a stop (a slower transition's
-/// own ramps are not counted); each line within what it reaches from the speed before it and
-/// to the speed after (a pass forward and one back).
+/// Time of the span's moves from rest to rest through their corners: each corner at its
+/// transition's ceiling (`corner_speed`) where that is at least `class`, else a stop (a slower
+/// transition's own ramps are not counted); each line within what it reaches from the speed
+/// before it and to the speed after (a pass forward and one back).
 fn corners_time(span: Fit, class: f64, m: &Machine) -> f64 {
     let moves = &span.run[span.from..span.to];
     let lines: Vec<Line> = moves.iter().map(line_of).collect();
