@@ -97,6 +97,18 @@ impl Bands {
         self.levels.is_empty()
     }
 
+    /// The tightest and the widest of the pairs (A, J) of `top` and these levels, each with
+    /// `top`'s speed and snap: a ramp within them is no faster than within the first throughout,
+    /// nor slower than within the second (a level's pair holds as a pair, so neither need be
+    /// one of them).
+    pub fn pair_range(&self, top: &Limits) -> (Limits, Limits) {
+        self.levels.iter().fold((*top, *top), |(mut tight, mut wide), b| {
+            (tight.a_max, tight.j_max) = (tight.a_max.min(b.a_max), tight.j_max.min(b.j_max));
+            (wide.a_max, wide.j_max) = (wide.a_max.max(b.a_max), wide.j_max.max(b.j_max));
+            (tight, wide)
+        })
+    }
+
     pub fn levels(&self) -> &[Band] {
         &self.levels
     }

@@ -359,23 +359,12 @@ fn slower_than_stops(length: f64, class: f64, stops: f64) -> bool {
 fn slower_from_rest(length: f64, own: &CurveLimits, stops: f64) -> bool {
     // Planned within its tightest pair throughout, the curve takes at least as long as within
     // its bands (each allows that pair): where even that is not slower, they need not be planned.
-    let (a_max, j_max) = own
-        .bands
-        .levels()
-        .iter()
-        .fold((own.limits.a_max, own.limits.j_max), |(a, j), b| {
-            (a.min(b.a_max), j.min(b.j_max))
-        });
     let tightest = scurve7::plan(&BlockRequest {
         length,
         v_in: 0.0,
         v_out: 0.0,
         v_feed: own.class,
-        limits: Limits {
-            a_max,
-            j_max,
-            ..own.limits
-        },
+        limits: own.bands.pair_range(&own.limits).0,
     });
     if tightest.duration() <= stops {
         return false;

@@ -157,11 +157,7 @@ pub(super) fn cost_floor(d: f64, length: f64, v: f64, sides: &[Side; 2]) -> Opti
         cost -= d / v_side;
         if v < v_side {
             let rest = (s.length - d).max(0.0);
-            let widest = s.bands.levels().iter().fold(s.top, |mut l, b| {
-                l.a_max = l.a_max.max(b.a_max);
-                l.j_max = l.j_max.max(b.j_max);
-                l
-            });
+            let (_, widest) = s.bands.pair_range(&s.top);
             let (t, x) = scurve7::rise_within(v.max(0.0), v_side, rest, &widest);
             cost += t - x / v_side - RAMP_FIT * rest / v.max(f64::MIN_POSITIVE);
         }
