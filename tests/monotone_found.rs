@@ -341,6 +341,35 @@ M30
     assert_larger_tolerance_not_longer(program, axes, [0.01912, 0.07467]);
 }
 
+/// A case `tolerance_failure_rate` found (seed 2): a fitted curve of 0.98 mm between two long
+/// arcs. Its corner with the arc after it was estimated, when the corner before it was chosen,
+/// as if that corner's transition might use all of the curve: at 3 times the tolerance 23.6 mm/s
+/// where it then ran at 18.5, so the corner before took a longer cut to meet it and the program
+/// ran 2.6494 s against 2.6414. The far corner is now estimated within the half of a span that
+/// the corner before it leaves at least (path/junction.rs, `corner_ceiling`): 18.6 mm/s at both
+/// tolerances, and 2.6344 s at both.
+#[test]
+fn a_larger_tolerance_does_not_count_on_all_of_a_short_span_at_its_far_corner() {
+    let axes = [
+        [8698.91363085605, 4662.674745841597, 2619.511333658117],
+        [8204.310067342487, 1462.4688176222119, 716071076.23949],
+        [4840.314852850144, 3245.01623009762, 11820821.110568725],
+    ];
+    let program = "G21 G90 G17 G64 F6649.0
+G2 X0.0001 Y-0.0064 Z0.0000 I0.0000 J-0.0032
+G2 X-7.0246 Y0.1350 Z0.4039 I-1.9465 J77.8455
+G2 X-11.7221 Y-3.7789 Z-1.3823 I-4.6578 J0.8143
+G2 X-11.8120 Y-3.7438 Z-1.3823 I0.0522 J0.2662
+G2 X-29.1228 Y16.1029 Z-1.3823 I23.1422 J37.6580
+G1 X-29.2537 Y16.4002 Z-1.3194
+G1 X-29.5169 Y16.9980 Z-1.3206
+G3 X-41.2093 Y10.9888 Z4.6239 I-6.0266 J-2.6535
+G1 X-40.5622 Y9.8963 Z4.6710
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.058531380856831586, 0.17612092499820622]);
+}
+
 /// A case `make fuzz` found (PROPTEST_RNG_SEED 1216487744): one arc of R 8.85 mm from rest to
 /// rest on axes of low jerk (X 4222, Z 1000 mm/s³), every acceleration limit raised 1.66 times:
 /// 1.6020 s against 1.5997 s (from 1.1 times on it only grew). Each speed band's pair reserved

@@ -289,7 +289,9 @@ impl SmoothBuilder {
             return;
         };
         if let Some(after) = &self.waiting {
-            span.exit = (!joined(&span, after)).then(|| corner_ceiling(&span, after, m));
+            // Where `span` starts at a corner, its transition may take up to half of it.
+            let shared = self.held.as_ref().is_some_and(|held| !joined(held, &span));
+            span.exit = (!joined(&span, after)).then(|| corner_ceiling(&span, after, shared, m));
         }
         self.join(span, m, out);
     }
