@@ -400,8 +400,12 @@ impl Search<'_> {
     }
 
     /// Whether the curve for cut d and λ = 2·share·d may cost less than `best`: its cost at its
-    /// speed's ceiling (a bound from below) is clearly less.
+    /// speed's ceiling (a bound from below) is clearly less. Not at a cut no longer than
+    /// `MIN_LENGTH`, which the search would not take either.
     fn may_beat(&self, best: &Found, d: f64, share: f64) -> bool {
+        if d.is_nan() || d <= MIN_LENGTH {
+            return false;
+        }
         let h = cut_curve(self.held, self.next, d, share);
         let own = Own::of(&h, self.feed, self.m);
         let v_ceiling = self.speed(d, own.ceiling());
