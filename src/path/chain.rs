@@ -4,7 +4,8 @@
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
 use super::arc::{curve_bands, curve_top_speed, Frame, TopSpeeds};
-use super::{hermite::Hermite, max_bounds};
+use super::hermite::{Hermite, BOUND_PIECES};
+use super::max_bounds;
 use crate::config::Machine;
 use crate::feed::bands::Bands;
 use crate::feed::Limits;
@@ -213,24 +214,19 @@ pub struct CurveLimits {
 /// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped
 /// at `v_cap` (`curve_bands`); its class is its top speed.
 pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> CurveLimits {
-    piece_limits_known(cells, &piece_frame(cells, v_cap, m), m, None)
+    limits_in(cells, &piece_frame(cells, v_cap, m), m, None)
 }
 
 /// The frame of a piece's limits (`arc::Frame`): what its limits, its top speed and the ceiling
 /// of that speed all start from.
-pub(super) fn piece_frame(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Frame {
+fn piece_frame(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Frame {
     let b = max_bounds(cells);
     Frame::of_bounds(&b, smallest_radius(&b), v_cap, m)
 }
 
-/// `piece_limits` in its `frame`, given what `piece_speed` solved for the same cells and frame
-/// (or None).
-pub(super) fn piece_limits_known(
-    cells: &[[Vec3; 3]],
-    frame: &Frame,
-    m: &Machine,
-    known: Option<TopSpeeds>,
-) -> CurveLimits {
+/// `piece_limits` in its `frame`, given what `curve_top_speed` solved for the same cells and
+/// frame (or None).
+fn limits_in(cells: &[[Vec3; 3]], frame: &Frame, m: &Machine, known: Option<TopSpeeds>) -> CurveLimits {
     let (limits, bands) = curve_bands(frame, cells, m, known);
     CurveLimits {
         limits,
@@ -239,10 +235,44 @@ pub(super) fn piece_limits_known(
     }
 }
 
-/// The top speed of `piece_limits` alone (`curve_top_speed`) in its `frame`, and what it solved
-/// for it.
-pub(super) fn piece_speed(cells: &[[Vec3; 3]], frame: &Frame, m: &Machine) -> (f64, TopSpeeds) {
-    curve_top_speed(frame, cells, m)
+/// A Hermite curve's own limits (a fitted span's or a corner transition's), worked out as far
+/// as asked: its derivative bound cells, the frame of its limits at the speed its feed caps it
+/// at (`feed/σ`), and what solving its top speed found (its limits then start from there).
+pub(super) struct Own {
+    cells: [[Vec3; 3]; BOUND_PIECES],
+    frame: Frame,
+    top: Option<TopSpeeds>,
+}
+
+impl Own {
+    pub(super) fn of(h: &Hermite, feed: f64, m: &Machine) -> Own {
+        let cells = h.cell_array();
+        let frame = piece_frame(&cells, feed / h.speed_bound().max(1.0), m);
+        Own {
+            cells,
+            frame,
+            top: None,
+        }
+    }
+
+    /// Its limits and bands (`piece_limits`), from its top speed where `speed` solved it.
+    pub(super) fn limits(&self, m: &Machine) -> CurveLimits {
+        limits_in(&self.cells, &self.frame, m, self.top)
+    }
+
+    /// The top speed of its limits alone (`curve_top_speed`; curves are compared by it, and the
+    /// bands of the ones kept are computed from there).
+    pub(super) fn speed(&mut self, m: &Machine) -> f64 {
+        let (v, top) = curve_top_speed(&self.frame, &self.cells, m);
+        self.top = Some(top);
+        v
+    }
+
+    /// A bound of `speed` from above without the budget's solves: where even that decides a
+    /// comparison, the speed is not solved.
+    pub(super) fn ceiling(&self) -> f64 {
+        self.frame.ceiling()
+    }
 }
 
 /// The smallest radius of curvature the cells allow, from their largest bounds (`max_bounds`):

@@ -13,7 +13,7 @@
 //! vertices are neither knots nor split points, and a span that does not fit over them is the
 //! line itself, whose junctions the transitions then cut along its whole length.
 
-use super::chain::{piece_frame, piece_limits_known, piece_speed, Curve, CurveLimits, Piece};
+use super::chain::{Curve, CurveLimits, Own, Piece};
 use super::hermite::{bezier, Hermite, Jet};
 use super::junction::corner_speed;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span, TIGHTER_RAMP};
@@ -257,9 +257,8 @@ impl SmoothBuilder {
         // Its limits: its top speed first, which the first two tests take; its bands only for
         // the third, and where it is kept (those of a curve the first two reject are not needed).
         let kept = || {
-            let cells = h.cell_array();
-            let frame = piece_frame(&cells, first.feed / h.speed_bound().max(1.0), m);
-            let (class, top) = piece_speed(&cells, &frame, m);
+            let mut own = Own::of(&h, first.feed, m);
+            let class = own.speed(m);
             let mut stops = stops_time(moves, m);
             if alone {
                 stops = stops.min(corners_time(span, class, m));
@@ -268,7 +267,7 @@ impl SmoothBuilder {
             {
                 return None;
             }
-            let own = piece_limits_known(&cells, &frame, m, Some(top));
+            let own = own.limits(m);
             let from_rest = if rest_to_rest { stops } else { TIGHTER_RAMP * stops };
             (!slower_from_rest(h.length(), &own, from_rest)).then_some(own)
         };

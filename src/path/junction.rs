@@ -9,10 +9,9 @@
 
 mod cost;
 
-use super::arc::{Frame, TopSpeeds};
-use super::chain::{piece_frame, piece_limits_known, piece_speed, Curve, CurveLimits};
+use super::chain::{Curve, CurveLimits, Own};
 use super::cover::Guards;
-use super::hermite::{Hermite, Jet, BOUND_PIECES};
+use super::hermite::{Hermite, Jet};
 use super::slowest_axis;
 use super::smooth::{jet_at, Move, Span};
 use super::tolerance::{MIN_LENGTH, REVERSAL_COS, TRANSITION_SAMPLES};
@@ -20,7 +19,6 @@ use crate::config::Machine;
 use crate::feed::scurve7_banded::Rise;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
-use crate::Vec3;
 use cost::{cost_floor, joined_sides, local_cost, side, End, Far, Side};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
@@ -43,46 +41,6 @@ fn faster_than_a_stop(h: &Hermite, feed: f64, m: &Machine) -> Option<(f64, Own)>
     .duration();
     let v_max = own.speed(m);
     (h.length() <= v_max * t_stop).then_some((v_max, own))
-}
-
-/// The derivative bound cells of a transition, the frame of its limits at the speed its feed
-/// caps it at (`feed/σ`), and what solving its top speed found (its limits then start from
-/// there).
-struct Own {
-    cells: [[Vec3; 3]; BOUND_PIECES],
-    frame: Frame,
-    top: Option<TopSpeeds>,
-}
-
-impl Own {
-    fn of(h: &Hermite, feed: f64, m: &Machine) -> Own {
-        let cells = h.cell_array();
-        let frame = piece_frame(&cells, feed / h.speed_bound().max(1.0), m);
-        Own {
-            cells,
-            frame,
-            top: None,
-        }
-    }
-
-    /// Its limits (`piece_limits`).
-    fn limits(&self, m: &Machine) -> CurveLimits {
-        piece_limits_known(&self.cells, &self.frame, m, self.top)
-    }
-
-    /// The top speed of its limits alone (the cuts are compared by it; only the chosen one's
-    /// bands are computed).
-    fn speed(&mut self, m: &Machine) -> f64 {
-        let (v, top) = piece_speed(&self.cells, &self.frame, m);
-        self.top = Some(top);
-        v
-    }
-
-    /// A bound of `speed` from above without the budget's solves: where even that decides a
-    /// comparison, the speed is not solved.
-    fn ceiling(&self) -> f64 {
-        self.frame.ceiling()
-    }
 }
 
 /// The top speed of the transition the junction search starts from at a corner between two
