@@ -30,11 +30,19 @@ pub(super) struct Guards {
     m2: f64,
 }
 
-/// A sample: its parameter's point and first derivative.
+/// A sample: its parameter's point, and the curve for its first derivative (taken only where
+/// the sample guard alone does not hold).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Sample {
+pub(super) struct Sample<'a> {
     pub(super) p: Vec3,
-    pub(super) d1: Vec3,
+    u: f64,
+    h: &'a Hermite,
+}
+
+impl Sample<'_> {
+    fn d1(&self) -> Vec3 {
+        self.h.tangent(self.u)
+    }
 }
 
 impl Guards {
@@ -50,9 +58,9 @@ impl Guards {
     }
 
     /// Sample k (0…`TRANSITION_SAMPLES`).
-    pub(super) fn sample(&self, h: &Hermite, k: usize) -> Sample {
-        let (p, d1) = h.point_tangent(self.step * k as f64);
-        Sample { p, d1 }
+    pub(super) fn sample<'a>(&self, h: &'a Hermite, k: usize) -> Sample<'a> {
+        let u = self.step * k as f64;
+        Sample { p: h.point(u), u, h }
     }
 
     /// Sample `s`, at distance `d` from `mv` (`Source::distance`), keeps the half-steps about
@@ -87,7 +95,8 @@ impl Guards {
         if along < reach || along > length - reach {
             return None;
         }
-        let across = norm(sub(s.d1, scale(t, dot(s.d1, t))));
+        let d1 = s.d1();
+        let across = norm(sub(d1, scale(t, dot(d1, t))));
         Some(across * delta + self.m2 * delta * delta / 2.0)
     }
 
@@ -113,7 +122,8 @@ impl Guards {
         }
         let e_rho = scale(add(scale(a.e1, x), scale(a.e2, y)), 1.0 / rho);
         let e_phi = scale(add(scale(a.e1, -y), scale(a.e2, x)), 1.0 / rho);
-        let (d_rho, d_phi, d_z) = (dot(s.d1, e_rho), dot(s.d1, e_phi), dot(s.d1, a.axis));
+        let d1 = s.d1();
+        let (d_rho, d_phi, d_z) = (dot(d1, e_rho), dot(d1, e_phi), dot(d1, a.axis));
         let n = d_rho.hypot(d_z - h / rho * d_phi);
         let (hr, s2) = (h.abs() / rho_min, self.sigma * self.sigma / rho_min);
         let rate = self.m2 + s2 + self.m2 * (1.0 + hr) + 2.0 * hr * s2;

@@ -155,23 +155,15 @@ impl Hermite {
         add(self.start, p)
     }
 
-    /// The point and the first derivative at u, as `eval` gives them (the tolerance checks
-    /// sample no higher derivative).
-    pub fn point_tangent(&self, u: f64) -> (Vec3, Vec3) {
+    /// The first derivative at u, as `eval` gives it (the tolerance checks need it only where a
+    /// sample's distance is near the tolerance; `point` gives the point).
+    pub fn tangent(&self, u: f64) -> Vec3 {
         let u = u.clamp(0.0, self.lambda);
         let c = &self.c;
-        let (mut p, mut d1) = ([0.0; 3], [0.0; 3]);
-        for i in 0..3 {
+        std::array::from_fn(|i| {
             let (c1, c2, c3, c4, c5) = (c[0][i], c[1][i], c[2][i], c[3][i], c[4][i]);
-            p[i] = u * (c1 + u * (c2 + u * (c3 + u * (c4 + u * c5))));
-            d1[i] = c1 + u * (2.0 * c2 + u * (3.0 * c3 + u * (4.0 * c4 + u * 5.0 * c5)));
-        }
-        let p = if u >= self.lambda {
-            self.end
-        } else {
-            add(self.start, p)
-        };
-        (p, d1)
+            c1 + u * (2.0 * c2 + u * (3.0 * c3 + u * (4.0 * c4 + u * 5.0 * c5)))
+        })
     }
 
     /// Point and derivatives w.r.t. u (clamped to [0, λ]; the end point is exact).
