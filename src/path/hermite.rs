@@ -141,7 +141,7 @@ impl Hermite {
     }
 
     /// The point at u alone (as `eval` gives it, without the derivatives: the tolerance checks
-    /// sample only points).
+    /// sample points, and take a sample's derivative only where they need it, `tangent`).
     pub fn point(&self, u: f64) -> Vec3 {
         let u = u.clamp(0.0, self.lambda);
         if u >= self.lambda {
