@@ -142,6 +142,8 @@ fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut Starts) {
 /// highest level k ≥ 1 where it comes onto that level's plateau: below k's floor it is then the
 /// same whatever `hi` (it leaves k at acceleration A_k); returns k (0 where it went down through
 /// every level).
+// Inlined where it is called: once per distance a root search evaluates (`Rise::time_distance`).
+#[inline(always)]
 fn backward_from(levels: &[Level], hi: f64, mut g: f64, bwd: &mut Pieces, to_plateau: bool) -> usize {
     for (k, l) in levels.iter().enumerate().rev() {
         let top = l.top.min(hi);
