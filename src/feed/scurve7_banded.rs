@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 mod envelope;
 pub use envelope::Rise;
-use envelope::{band_below, rise, rise_time_distance};
+use envelope::{band_below, rise, rise_time_distance, Piece};
 
 /// One phase of constant jerk, with the state at its start.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -178,19 +178,40 @@ impl Scurve7Banded {
 /// the feed if the length allows, the highest peak otherwise; an exit that cannot be reached
 /// becomes the closest one that can (reported in `v_end`).
 pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scurve7Banded {
-    let (length, v_in, v_c, v_end) = speeds(b, length, v_in, v_out, v_feed);
-    build(b, length, v_in, v_c, v_end)
+    speeds(
+        b,
+        length,
+        v_in,
+        v_out,
+        v_feed,
+        |(length, v_in, v_c, v_end), kept| build(b, kept, length, v_in, v_c, v_end),
+    )
 }
 
 /// `plan`'s duration and cruise speed alone, the same bit for bit, without building its phases
 /// (the chain decisions compare block times).
 pub fn plan_time(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64) {
-    let (length, v_in, v_c, v_end) = speeds(b, length, v_in, v_out, v_feed);
-    (duration(b, length, v_in, v_c, v_end), v_c)
+    speeds(
+        b,
+        length,
+        v_in,
+        v_out,
+        v_feed,
+        |(length, v_in, v_c, v_end), kept| (duration(b, kept, length, v_in, v_c, v_end), v_c),
+    )
 }
 
-/// `plan`'s length, entry, cruise and exit speeds.
-fn speeds(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64, f64, f64) {
+/// `plan`'s length, entry, cruise and exit speeds, to `then` with the rises the search for them
+/// built (from the entry speed, and the exit speed where it differs; none where it built none):
+/// the block's ramps are pieces of them.
+fn speeds<R>(
+    b: &Banded,
+    length: f64,
+    v_in: f64,
+    v_out: f64,
+    v_feed: f64,
+    then: impl FnOnce((f64, f64, f64, f64), &[&Rise]) -> R,
+) -> R {
     let finite = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
     let (length, v_in, v_out) = (finite(length), finite(v_in), finite(v_out));
     let mut v_feed = finite(v_feed);
@@ -200,75 +221,90 @@ fn speeds(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, 
     let d = |x: f64, y: f64| ramp_distance(b, x, y);
     // Each ramp distance solved once: the regula falsi starts from the ones the tests here took.
     let d_through = d(v_in, v_out);
-    let (v_c, v_end) = if d_through > length {
+    if d_through > length {
         let drop = |x: f64| d(v_in, x) - length;
         if v_out > v_in {
-            let v = max_speed(b, length, v_in).min(v_out);
-            (v, v)
-        } else {
-            let d_stop = d(v_in, 0.0);
-            if d_stop <= length {
-                // A stop fits: the largest exit below v_out whose drop fits (`lowest_exit`).
-                (v_in, stop_fits_exit(b, length, v_in, v_out, d_stop, d_through))
-            } else {
-                // It does not: the smallest drop that fits, above v_out.
-                (
-                    v_in,
-                    falsi_from(v_in, drop(v_in), v_out, d_through - length, drop),
-                )
-            }
+            // `max_speed`, from a rise kept for the ramp.
+            let up = Rise::from(b, v_in.max(0.0));
+            let v = up.max_speed(length).min(v_out);
+            return then((length, v_in, v, v), &[&up]);
         }
+        let d_stop = d(v_in, 0.0);
+        let v_end = if d_stop <= length {
+            // A stop fits: the largest exit below v_out whose drop fits (`lowest_exit`).
+            stop_fits_exit(b, length, v_in, v_out, d_stop, d_through)
+        } else {
+            // It does not: the smallest drop that fits, above v_out.
+            falsi_from(v_in, drop(v_in), v_out, d_through - length, drop)
+        };
+        return then((length, v_in, v_in, v_end), &[]);
+    }
+    // Above both ends, each ramp rises from its end: the forward envelopes built once (one
+    // when the ends are equal, the two ramps then the same sum).
+    // Each rise is a few kB: built where it stays.
+    let up = Rise::from(b, v_in);
+    let down_rise;
+    let down = if v_out != v_in {
+        down_rise = Rise::from(b, v_out);
+        Some(&down_rise)
     } else {
-        let v_hi = v_in.max(v_out);
-        // Above both ends, each ramp rises from its end: the forward envelopes built once (one
-        // when the ends are equal, the two ramps then the same sum).
-        // Each rise is a few kB: built where it stays.
-        let up = Rise::from(b, v_in);
-        let down_rise;
-        let down = if v_out != v_in {
-            down_rise = Rise::from(b, v_out);
-            Some(&down_rise)
-        } else {
-            None
-        };
-        let total = |v: f64| {
-            let d_up = up.time_distance(v).1;
-            d_up + down.map_or(d_up, |r| r.time_distance(v).1)
-        };
-        let v_c = if v_feed <= v_hi {
-            v_feed.max(v_hi)
-        } else {
-            let t_feed = total(v_feed);
-            if t_feed <= length {
-                v_feed.max(v_hi)
-            } else {
-                // At v_hi one of the two ramps is none: the total is the one ramp between.
-                let t_hi = d_through + 0.0;
-                let g = |v: f64| total(v) - length;
-                // Both ramps in one band: scurve7's peak there.
-                let band = |r: &Rise| r.first_band();
-                let seed = match (band(&up), down.map_or(band(&up), band)) {
-                    (Some((top, a, j)), Some(other)) if other.0 == top => {
-                        let x0 = scurve7::solve_peak(length, v_in, v_out, v_feed, a, j);
-                        (x0 < top).then_some(x0)
-                    }
-                    _ => None,
-                };
-                let near = seed.and_then(|x0| crossing_near(x0, v_hi, v_feed, g));
-                near.unwrap_or_else(|| falsi_from(v_hi, t_hi - length, v_feed, t_feed - length, g))
-            }
-        };
-        (v_c, v_out)
+        None
     };
-    (length, v_in, v_c, v_end)
+    let v_c = peak(length, (v_in, v_out, v_feed), d_through, &up, down);
+    match down {
+        Some(down) => then((length, v_in, v_c, v_out), &[&up, down]),
+        None => then((length, v_in, v_c, v_out), &[&up]),
+    }
+}
+
+/// The cruise speed of a block whose ramp between its ends fits (`d_through`, the distance of
+/// that ramp): the feed where both ramps to it fit, else the highest peak, with the rises from
+/// the entry (`up`) and the exit (`down`, none when the ends are equal).
+fn peak(length: f64, speeds: (f64, f64, f64), d_through: f64, up: &Rise, down: Option<&Rise>) -> f64 {
+    let (v_in, v_out, v_feed) = speeds;
+    let v_hi = v_in.max(v_out);
+    let total = |v: f64| {
+        let d_up = up.time_distance(v).1;
+        d_up + down.map_or(d_up, |r| r.time_distance(v).1)
+    };
+    if v_feed <= v_hi {
+        return v_feed.max(v_hi);
+    }
+    let t_feed = total(v_feed);
+    if t_feed <= length {
+        return v_feed.max(v_hi);
+    }
+    // At v_hi one of the two ramps is none: the total is the one ramp between.
+    let t_hi = d_through + 0.0;
+    let g = |v: f64| total(v) - length;
+    // Both ramps in one band: scurve7's peak there.
+    let band = |r: &Rise| r.first_band();
+    let seed = match (band(up), down.map_or(band(up), band)) {
+        (Some((top, a, j)), Some(other)) if other.0 == top => {
+            let x0 = scurve7::solve_peak(length, v_in, v_out, v_feed, a, j);
+            (x0 < top).then_some(x0)
+        }
+        _ => None,
+    };
+    let near = seed.and_then(|x0| crossing_near(x0, v_hi, v_feed, g));
+    near.unwrap_or_else(|| falsi_from(v_hi, t_hi - length, v_feed, t_feed - length, g))
+}
+
+/// The pieces of the rise `from` → `hi` to `take`: from a kept rise that starts there (the
+/// same pieces: `Rise::pieces`), else from one built for this ramp.
+fn ramp_pieces(b: &Banded, kept: &[&Rise], from: f64, hi: f64, take: impl FnMut(&Piece)) {
+    match kept.iter().find(|r| r.lo().to_bits() == from.to_bits()) {
+        Some(r) => r.pieces(hi, take),
+        None => rise(b, from, hi, take),
+    }
 }
 
 /// The duration `build` sums: the rise's phases, the cruise, the drop's phases in reverse, each
 /// added when it is longer than 0, in that order.
-fn duration(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> f64 {
+fn duration(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f64) -> f64 {
     let ramp = |from: f64| {
         let (mut taus, mut n, mut s) = ([0.0; 4 * (MAX_BANDS + 1)], 0, 0.0);
-        rise(b, from, v_c, |p| {
+        ramp_pieces(b, kept, from, v_c, |p| {
             let (tau, _, ds) = p.run();
             if n < taus.len() {
                 taus[n] = tau;
@@ -297,14 +333,14 @@ fn duration(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> f64 {
     phases.filter(|&&tau| tau > 0.0).fold(0.0, |t, &tau| t + tau)
 }
 
-fn build(b: &Banded, length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {
+fn build(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {
     // The drop is the rise v_end → v_c played backwards: the same phases in reverse order. Each
     // ramp's distance is summed on the way, as `rise_time_distance` sums it (no pieces when the
     // ramp is none: its distance is 0 either way).
     let ramp = |from: f64| {
         // At most a rise and a plateau per band, each cut once where the envelopes cross.
         let (mut phases, mut s) = (Vec::with_capacity(4 * (MAX_BANDS + 1)), 0.0);
-        rise(b, from, v_c, |p| {
+        ramp_pieces(b, kept, from, v_c, |p| {
             let (tau, j, ds) = p.run();
             phases.push((tau, j));
             s += ds;

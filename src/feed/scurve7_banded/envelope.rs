@@ -273,6 +273,16 @@ impl<'a> Rise<'a> {
         (sum.t, sum.s)
     }
 
+    /// The pieces of the rise lo → hi, in order, to `take`: those `rise` gives, from the kept F
+    /// (the levels of a rise to hi are the ones below hi, and F on them is theirs).
+    pub(super) fn pieces(&self, hi: f64, take: impl FnMut(&Piece)) {
+        let n = self.levels.partition_point(|l| l.floor < hi);
+        let mut bwd = Pieces::default();
+        backward_from(&self.levels[..n], hi, 0.0, &mut bwd, false);
+        let end = self.starts.get(n).copied().unwrap_or(self.fwd.len());
+        merge(&self.fwd.as_slice()[..end], bwd.as_slice(), hi, take);
+    }
+
     /// The sums of the rise below level k's floor with B leaving k at A_k (`below`).
     fn below(&self, k: usize) -> (f64, f64) {
         if let Some(sums) = self.below.borrow()[k] {
@@ -342,9 +352,10 @@ mod tests {
     use crate::feed::{Limits, ProfileKind};
     use crate::test_rng::unit;
 
-    /// A rise from a kept forward envelope (`Rise`) is the rise built whole, bit for bit, on 200
-    /// random band sets (acceleration and jerk rising and falling with speed) for ramps within a
-    /// band, across many, from rest, to band edges exactly and above the block's top speed.
+    /// A rise from a kept forward envelope (`Rise`) is the rise built whole, bit for bit (its
+    /// sums and its pieces), on 200 random band sets (acceleration and jerk rising and falling
+    /// with speed) for ramps within a band, across many, from rest, to band edges exactly and
+    /// above the block's top speed.
     #[test]
     fn kept_forward_envelope_gives_the_same_rise() {
         let mut s = 0x9e37_79b9_7f4a_7c15u64;
@@ -382,6 +393,11 @@ mod tests {
                         [whole.0.to_bits(), whole.1.to_bits()],
                         "{lo} → {hi}: {kept:?} vs {whole:?}"
                     );
+                    let bits = |p: &Piece| [p.v0, p.v1, p.alpha, p.beta].map(f64::to_bits);
+                    let (mut kept, mut whole) = (Vec::new(), Vec::new());
+                    rise.pieces(hi, |p| kept.push(bits(p)));
+                    super::rise(&b, lo, hi, |p| whole.push(bits(p)));
+                    assert_eq!(kept, whole, "{lo} → {hi}: pieces");
                 }
             }
         }
