@@ -140,15 +140,27 @@ pub fn falsi(good: f64, bad: f64, g: impl Fn(f64) -> f64) -> f64 {
 /// nearer either end than half that, so where the rounding of g near the crossing leaves the
 /// secant pointing at an end (which made the steps those of a bisection down to adjacent
 /// floats), the next step closes the bracket instead.
-pub fn falsi_from(
+pub fn falsi_from(good: f64, g_good: f64, bad: f64, g_bad: f64, g: impl Fn(f64) -> f64) -> f64 {
+    // Never given up: the crossing itself.
+    falsi_until(good, g_good, bad, g_bad, g, |_| false).unwrap_or(good)
+}
+
+/// `falsi_from`, given up (None) as soon as the bracket's bad end is `past` (it starts so, or a
+/// step moves it there): the point it would return lies between the ends, so on the good side of
+/// that one. The same steps until then.
+pub fn falsi_until(
     mut good: f64,
     mut g_good: f64,
     mut bad: f64,
     mut g_bad: f64,
     g: impl Fn(f64) -> f64,
-) -> f64 {
+    past: impl Fn(f64) -> bool,
+) -> Option<f64> {
     if !(g_good <= 0.0 && g_bad > 0.0) {
-        return good;
+        return Some(good);
+    }
+    if past(bad) {
+        return None;
     }
     // Which end moved last: the other end's value is halved when the same one moves twice.
     let mut last_good = None;
@@ -185,13 +197,16 @@ pub fn falsi_from(
             last_good = Some(true);
         } else {
             (bad, g_bad) = (x, gx);
+            if past(bad) {
+                return None;
+            }
             if last_good == Some(false) {
                 g_good *= 0.5;
             }
             last_good = Some(false);
         }
     }
-    good
+    Some(good)
 }
 
 /// The crossing of g between `good` (g ≤ 0) and `bad` (g > 0), to within `ROOT_TOL`, from a

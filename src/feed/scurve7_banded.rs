@@ -22,7 +22,7 @@
 //! evaluations of the distance confirm (`crossing_near`).
 
 use super::bands::{Banded, MAX_BANDS};
-use super::roots::{crossing_near, falsi_from};
+use super::roots::{crossing_near, falsi_from, falsi_until};
 use super::tolerance::{BRACKET_DOUBLINGS, BRACKET_START};
 use super::{scurve7, FeedLaw, Kin, Limits};
 use serde::{Deserialize, Serialize};
@@ -82,6 +82,14 @@ fn one_band(a: f64, j: f64) -> Limits {
 impl Rise<'_> {
     /// `max_speed` from this rise's speed: every ramp from it shares its forward envelope.
     pub fn max_speed(&self, length: f64) -> f64 {
+        // Never given up: the speed itself.
+        self.max_speed_unless_below(length, f64::NEG_INFINITY)
+            .unwrap_or(self.lo())
+    }
+
+    /// `max_speed`, or None as soon as its search has found it below `v` (a speed at or below
+    /// v whose ramp does not fit): the same steps until then.
+    pub fn max_speed_unless_below(&self, length: f64, v: f64) -> Option<f64> {
         let v0 = self.lo();
         let length = length.max(0.0);
         let fits = |v: f64| {
@@ -93,16 +101,17 @@ impl Rise<'_> {
             let x0 = v0 + scurve7::max_rise(length, v0, &one_band(a, j));
             (x0 < band_top).then_some(x0)
         });
-        if let Some(v) = seed.and_then(|x0| crossing_near(x0, v0, f64::INFINITY, |v| fits(v).1)) {
-            return v;
+        if let Some(x) = seed.and_then(|x0| crossing_near(x0, v0, f64::INFINITY, |v| fits(v).1)) {
+            return Some(x);
         }
+        let past = |bad: f64| bad <= v;
         // The bracket's ends with the distances already solved there, for the regula falsi.
         let top = self.banded().top.v_max;
         let (mut good, mut g_good) = (v0, fits(v0).1);
         if top.is_finite() && top > v0 {
             let (fit, g_top) = fits(top);
             if !fit {
-                return falsi_from(good, g_good, top, g_top, |v| fits(v).1);
+                return falsi_until(good, g_good, top, g_top, |v| fits(v).1, past);
             }
             (good, g_good) = (top, g_top);
         }
@@ -111,12 +120,12 @@ impl Rise<'_> {
             let hi = good + step;
             let (fit, g_hi) = fits(hi);
             if !fit {
-                return falsi_from(good, g_good, hi, g_hi, |v| fits(v).1);
+                return falsi_until(good, g_good, hi, g_hi, |v| fits(v).1, past);
             }
             (good, g_good) = (hi, g_hi);
             step *= 2.0;
         }
-        good
+        Some(good)
     }
 }
 

@@ -22,7 +22,7 @@ mod feed_control;
 pub use feed_control::{FeedControl, Here, Replan};
 
 use crate::feed::bands::Banded;
-use crate::feed::scurve7_banded;
+use crate::feed::scurve7_banded::{self, Rise};
 use crate::feed::{BlockRequest, FeedLaw, Profile, ProfileKind};
 use crate::path::{PathBlock, Segment};
 use serde::{Deserialize, Serialize};
@@ -441,9 +441,24 @@ fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) ->
         return (pass, pass);
     }
     if e.v_in_stop.is_nan() {
-        e.v_in_stop = banded.max_entry(length, 0.0);
+        // Below the slow-down limit it is not the limit: left unsolved (NaN) then.
+        match stop_limit_unless_below(&banded, length, slow_to_next) {
+            Some(v) => e.v_in_stop = v,
+            None => return (pass, pass),
+        }
     }
     (cap.min(slow_to_next.max(e.v_in_stop)), pass)
+}
+
+/// The stop limit of a segment (`max_entry` to 0), or None where it is below `v`: under joined
+/// bands its root search, from rest through every band, gives up as soon as it has found that
+/// (the same steps as the whole search until then).
+fn stop_limit_unless_below(banded: &Banded, length: f64, v: f64) -> Option<f64> {
+    if banded.joined() {
+        Rise::from(banded, 0.0).max_speed_unless_below(length, v)
+    } else {
+        Some(banded.max_entry(length, 0.0))
+    }
 }
 
 #[cfg(test)]
