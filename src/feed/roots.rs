@@ -142,24 +142,24 @@ pub fn falsi(good: f64, bad: f64, g: impl Fn(f64) -> f64) -> f64 {
 /// floats), the next step closes the bracket instead.
 pub fn falsi_from(good: f64, g_good: f64, bad: f64, g_bad: f64, g: impl Fn(f64) -> f64) -> f64 {
     // Never given up: the crossing itself.
-    falsi_until(good, g_good, bad, g_bad, g, |_| false).unwrap_or(good)
+    falsi_until(good, g_good, bad, g_bad, g, |_, _| false).unwrap_or(good)
 }
 
-/// `falsi_from`, given up (None) as soon as the bracket's bad end is `past` (it starts so, or a
-/// step moves it there): the point it would return lies between the ends, so on the good side of
-/// that one. The same steps until then.
+/// `falsi_from`, given up (None) as soon as its bracket is `done` (given its good and bad ends;
+/// it starts so, or a step makes it so): the point it would return is the good end or lies
+/// between the two. The same steps until then.
 pub fn falsi_until(
     mut good: f64,
     mut g_good: f64,
     mut bad: f64,
     mut g_bad: f64,
     g: impl Fn(f64) -> f64,
-    past: impl Fn(f64) -> bool,
+    done: impl Fn(f64, f64) -> bool,
 ) -> Option<f64> {
     if !(g_good <= 0.0 && g_bad > 0.0) {
         return Some(good);
     }
-    if past(bad) {
+    if done(good, bad) {
         return None;
     }
     // Which end moved last: the other end's value is halved when the same one moves twice.
@@ -191,13 +191,16 @@ pub fn falsi_until(
         let gx = g(x);
         if gx <= 0.0 {
             (good, g_good) = (x, gx);
+            if done(good, bad) {
+                return None;
+            }
             if last_good == Some(true) {
                 g_bad *= 0.5;
             }
             last_good = Some(true);
         } else {
             (bad, g_bad) = (x, gx);
-            if past(bad) {
+            if done(good, bad) {
                 return None;
             }
             if last_good == Some(false) {

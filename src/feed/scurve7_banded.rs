@@ -83,13 +83,14 @@ impl Rise<'_> {
     /// `max_speed` from this rise's speed: every ramp from it shares its forward envelope.
     pub fn max_speed(&self, length: f64) -> f64 {
         // Never given up: the speed itself.
-        self.max_speed_unless_below(length, f64::NEG_INFINITY)
-            .unwrap_or(self.lo())
+        let all = (f64::NEG_INFINITY, f64::INFINITY);
+        self.max_speed_within(length, all).unwrap_or(self.lo())
     }
 
-    /// `max_speed`, or None as soon as its search has found it below `v` (a speed at or below
-    /// v whose ramp does not fit): the same steps until then.
-    pub fn max_speed_unless_below(&self, length: f64, v: f64) -> Option<f64> {
+    /// `max_speed`, or None as soon as its search has found it outside (below, above): below
+    /// `below` (a speed at or below it whose ramp does not fit) or at or above `above` (one at
+    /// or above it whose ramp fits). The same steps until then.
+    pub fn max_speed_within(&self, length: f64, (below, above): (f64, f64)) -> Option<f64> {
         let v0 = self.lo();
         let length = length.max(0.0);
         let fits = |v: f64| {
@@ -104,25 +105,31 @@ impl Rise<'_> {
         if let Some(x) = seed.and_then(|x0| crossing_near(x0, v0, f64::INFINITY, |v| fits(v).1)) {
             return Some(x);
         }
-        let past = |bad: f64| bad <= v;
+        let done = |good: f64, bad: f64| bad <= below || good >= above;
         // The bracket's ends with the distances already solved there, for the regula falsi.
         let top = self.banded().top.v_max;
         let (mut good, mut g_good) = (v0, fits(v0).1);
         if top.is_finite() && top > v0 {
             let (fit, g_top) = fits(top);
             if !fit {
-                return falsi_until(good, g_good, top, g_top, |v| fits(v).1, past);
+                return falsi_until(good, g_good, top, g_top, |v| fits(v).1, done);
             }
             (good, g_good) = (top, g_top);
+            if good >= above {
+                return None;
+            }
         }
         let mut step = good.max(BRACKET_START);
         for _ in 0..BRACKET_DOUBLINGS {
             let hi = good + step;
             let (fit, g_hi) = fits(hi);
             if !fit {
-                return falsi_until(good, g_good, hi, g_hi, |v| fits(v).1, past);
+                return falsi_until(good, g_good, hi, g_hi, |v| fits(v).1, done);
             }
             (good, g_good) = (hi, g_hi);
+            if good >= above {
+                return None;
+            }
             step *= 2.0;
         }
         Some(good)

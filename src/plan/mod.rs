@@ -419,7 +419,8 @@ impl Planner {
 /// which it passes on at `v_exit` without stopping (the slow-down limit under the cap). Its stop
 /// limit is computed the first time it can change the result (the slow-down limit below the
 /// cap), or taken from the slow-down limit itself when that is the stop (`v_exit` +0: the same
-/// solve).
+/// solve). Under joined bands a root search stops as soon as its answer cannot change the
+/// result: a slow-down limit at or above the cap, a stop limit below the slow-down limit.
 fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) -> (f64, f64) {
     let cap = e.v_in_cap;
     if cap <= v_exit || e.block.constant_speed {
@@ -431,18 +432,20 @@ fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) ->
         top: &e.block.limits,
         bands: &e.block.bands,
     };
-    let slow_to_next = banded.max_entry(length, v_exit);
+    // At or above the cap the result is the cap, whatever the stop limit.
+    let Some(slow_to_next) = max_entry_within(&banded, length, v_exit, (f64::NEG_INFINITY, cap)) else {
+        return (cap, cap);
+    };
     if v_exit.to_bits() == 0 && e.v_in_stop.is_nan() {
         e.v_in_stop = slow_to_next;
     }
-    // Above the cap the result is the cap, whatever the stop limit.
     let pass = cap.min(slow_to_next);
     if !may_stop || slow_to_next > cap {
         return (pass, pass);
     }
     if e.v_in_stop.is_nan() {
         // Below the slow-down limit it is not the limit: left unsolved (NaN) then.
-        match stop_limit_unless_below(&banded, length, slow_to_next) {
+        match max_entry_within(&banded, length, 0.0, (slow_to_next, f64::INFINITY)) {
             Some(v) => e.v_in_stop = v,
             None => return (pass, pass),
         }
@@ -450,14 +453,14 @@ fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) ->
     (cap.min(slow_to_next.max(e.v_in_stop)), pass)
 }
 
-/// The stop limit of a segment (`max_entry` to 0), or None where it is below `v`: under joined
-/// bands its root search, from rest through every band, gives up as soon as it has found that
-/// (the same steps as the whole search until then).
-fn stop_limit_unless_below(banded: &Banded, length: f64, v: f64) -> Option<f64> {
+/// `banded.max_entry(length, v_out)`, or None where it lies outside (below, above): under joined
+/// bands its root search gives up as soon as it has found that (the same steps as the whole
+/// search until then; `Rise::max_speed_within`).
+fn max_entry_within(banded: &Banded, length: f64, v_out: f64, range: (f64, f64)) -> Option<f64> {
     if banded.joined() {
-        Rise::from(banded, 0.0).max_speed_unless_below(length, v)
+        Rise::from(banded, v_out.max(0.0)).max_speed_within(length, range)
     } else {
-        Some(banded.max_entry(length, 0.0))
+        Some(banded.max_entry(length, v_out))
     }
 }
 

@@ -222,8 +222,8 @@ fn planning_questions_invert_the_distance() {
 /// form in one band gave it (`crossing_near`) or the regula falsi: on 200 random band sets, the
 /// largest speed, the lowest exit and a block's peak fit, and 1.5 `ROOT_TOL` more does not (the
 /// exit: 1e-9 of the target more, where the drop's distance is flat to rounding). `plan_time`
-/// is the block's duration and peak bit for bit; the largest speed's search given up below a
-/// speed is so only where the speed is below it, and is that speed bit for bit elsewhere.
+/// is the block's duration and peak bit for bit; the largest speed's search given up outside a
+/// range is so only where the speed is outside it, and is that speed bit for bit elsewhere.
 #[test]
 fn answers_are_crossings_within_the_tolerance() {
     use crate::feed::tolerance::ROOT_TOL;
@@ -254,11 +254,16 @@ fn answers_are_crossings_within_the_tolerance() {
             let w = max_speed(&b, length, v0);
             assert!(ramp_distance(&b, v0, w) <= length);
             assert!(ramp_distance(&b, v0, over(w)) > length, "{v0} {length}: {w}");
-            // Given up below a speed only where the answer is below it; else the answer itself.
+            // Given up outside a range only where the answer is outside it; else the answer.
+            let rise = Rise::from(&b, v0);
             for v in [0.5 * w, w, over(w), 2.0 * w] {
-                match Rise::from(&b, v0).max_speed_unless_below(length, v) {
+                match rise.max_speed_within(length, (v, f64::INFINITY)) {
                     Some(x) => assert_eq!(x.to_bits(), w.to_bits(), "{v0} {length} {v}"),
                     None => assert!(w < v, "{v0} {length}: {w} given up below {v}"),
+                }
+                match rise.max_speed_within(length, (f64::NEG_INFINITY, v)) {
+                    Some(x) => assert_eq!(x.to_bits(), w.to_bits(), "{v0} {length} {v}"),
+                    None => assert!(w >= v, "{v0} {length}: {w} given up above {v}"),
                 }
             }
             // A drop that ends inside (0, target): a stop fits, the drop to the target not.
