@@ -332,7 +332,14 @@ impl Planner {
         } else if e.block.constant_speed {
             v_in
         } else if target >= v_in {
-            target.min(banded.max_exit(length, v_in))
+            // The largest exit, where it is below a target above 0 (at or above, the target).
+            let range = (f64::NEG_INFINITY, target);
+            let reach = if target > 0.0 && banded.joined() {
+                Rise::from(&banded, v_in.max(0.0)).max_speed_within(length, range)
+            } else {
+                Some(banded.max_exit(length, v_in))
+            };
+            reach.map_or(target, |v| target.min(v))
         } else {
             banded.lowest_exit(length, v_in, target)
         };
