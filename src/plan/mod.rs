@@ -451,6 +451,9 @@ fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) ->
         return (pass, pass);
     }
     if e.v_in_stop.is_nan() {
+        if banded.joined() && stop_is_below(&banded, length, slow_to_next) {
+            return (pass, pass);
+        }
         // Below the slow-down limit it is not the limit: left unsolved (NaN) then.
         match max_entry_within(&banded, length, 0.0, (slow_to_next, f64::INFINITY)) {
             Some(v) => e.v_in_stop = v,
@@ -458,6 +461,18 @@ fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) ->
         }
     }
     (cap.min(slow_to_next.max(e.v_in_stop)), pass)
+}
+
+/// Relative margin by which a stop ramp must overrun the length for `stop_is_below`: far above
+/// the rounding of a ramp distance, so the distance as evaluated rises across it.
+const STOP_MARGIN: f64 = 1e-6;
+
+/// Whether the stop limit (`max_entry` to 0) is below `v`, without solving it (a root search
+/// from rest through every band): the stop solve returns a speed whose ramp from rest fits in
+/// `length`, so where the ramp from rest to `v` overruns it clearly, that speed is below `v`
+/// and the slow-down limit `v` is the entry limit.
+fn stop_is_below(banded: &Banded, length: f64, v: f64) -> bool {
+    scurve7_banded::ramp_distance(banded, 0.0, v) > length * (1.0 + STOP_MARGIN)
 }
 
 /// `banded.max_entry(length, v_out)`, or None where it lies outside (below, above): under joined
