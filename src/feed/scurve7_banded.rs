@@ -207,13 +207,25 @@ pub fn plan(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> Scur
 /// `plan`'s duration and cruise speed alone, the same bit for bit, without building its phases
 /// (the chain decisions compare block times).
 pub fn plan_time(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64) {
+    let (duration, v_c, _) = plan_time_rise(b, length, v_in, v_out, v_feed);
+    (duration, v_c)
+}
+
+/// `plan_time`, and the time of its ramp between its entry (v_in, finite and at least 0) and
+/// its cruise speed, as `ramp_time` gives it: where the cruise is above the entry, the sum of
+/// the rise the duration sums anyway (the chain decisions need both).
+pub fn plan_time_rise(b: &Banded, length: f64, v_in: f64, v_out: f64, v_feed: f64) -> (f64, f64, f64) {
     speeds(
         b,
         length,
         v_in,
         v_out,
         v_feed,
-        |(length, v_in, v_c, v_end), kept| (duration(b, kept, length, v_in, v_c, v_end), v_c),
+        |(length, v_in, v_c, v_end), kept| {
+            let (duration, t_up) = duration(b, kept, length, v_in, v_c, v_end);
+            let rise = if v_c > v_in { t_up } else { ramp_time(b, v_in, v_c) };
+            (duration, v_c, rise)
+        },
     )
 }
 
@@ -316,23 +328,25 @@ fn ramp_pieces(b: &Banded, kept: &[&Rise], from: f64, hi: f64, take: impl FnMut(
 }
 
 /// The duration `build` sums: the rise's phases, the cruise, the drop's phases in reverse, each
-/// added when it is longer than 0, in that order.
-fn duration(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f64) -> f64 {
+/// added when it is longer than 0, in that order; and the rise's time as `rise_time_distance`
+/// sums it (every phase, in order).
+fn duration(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f64) -> (f64, f64) {
     let ramp = |from: f64| {
-        let (mut taus, mut n, mut s) = ([0.0; 4 * (MAX_BANDS + 1)], 0, 0.0);
+        let (mut taus, mut n, mut s, mut t) = ([0.0; 4 * (MAX_BANDS + 1)], 0, 0.0, 0.0);
         ramp_pieces(b, kept, from, v_c, |p| {
             let (tau, _, ds) = p.run();
             if n < taus.len() {
                 taus[n] = tau;
                 n += 1;
             }
+            t += tau;
             s += ds;
         });
-        (taus, n, s)
+        (taus, n, s, t)
     };
-    let (up, n_up, s_up) = ramp(v_in);
-    let (down, n_down, s_down) = if v_end == v_in {
-        (up, n_up, s_up)
+    let (up, n_up, s_up, t_up) = ramp(v_in);
+    let (down, n_down, s_down, _) = if v_end == v_in {
+        (up, n_up, s_up, t_up)
     } else {
         ramp(v_end)
     };
@@ -346,7 +360,8 @@ fn duration(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end:
         .iter()
         .chain([&cruise])
         .chain(down[..n_down].iter().rev());
-    phases.filter(|&&tau| tau > 0.0).fold(0.0, |t, &tau| t + tau)
+    let total = phases.filter(|&&tau| tau > 0.0).fold(0.0, |t, &tau| t + tau);
+    (total, t_up)
 }
 
 fn build(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {

@@ -509,12 +509,14 @@ pub(super) fn joined_loss(
         top: fast.0,
         bands: fast.1,
     };
-    let (duration, v_peak) = scurve7_banded::plan_time(&banded, l_fast, v_slow, v_slow, v_fast);
+    // The block's rise from v_slow to its peak is the ramp through the junction's upper part
+    // (v_slow is finite and above 0 here, the block's entry as planned).
+    let (duration, v_peak, rise) = scurve7_banded::plan_time_rise(&banded, l_fast, v_slow, v_slow, v_fast);
     let loss = chain_loss + (l_fast / v_slow - duration).max(0.0);
     let from_rest = scurve7_banded::Rise::from(&banded, 0.0);
     let t = |v: f64| from_rest.time_distance(v).0;
     let (t_slow, fast_reach) = from_rest.time_distance(v_slow);
-    let through = t_slow + scurve7_banded::ramp_time(&banded, v_slow, v_peak) - t(v_peak);
+    let through = t_slow + rise - t(v_peak);
     if loss > through {
         return None;
     }
@@ -527,7 +529,7 @@ pub(super) fn joined_loss(
             top: slow.0,
             bands: slow.1,
         };
-        scurve7_banded::Rise::from(&slow, 0.0).time_distance(v_slow)
+        scurve7_banded::ramp(&slow, 0.0, v_slow)
     };
     // Where each side reaches the slower one's speed within its length even from rest at its
     // far end, no ramp need pass through the junction: it is run at that speed, and a block end
