@@ -254,27 +254,35 @@ fn grid_at_or_above(v: f64) -> f64 {
 /// The top band takes its pair at the next grid speed or inner edge above the top (or at the
 /// top, where the curve itself limits it), so a band's pair does not depend on the caps: a
 /// higher cap leaves every band as it was and adds speed above.
-/// `known`: what `curve_top_speed` solved for the same curve and cap, where it did (not solved
-/// again).
+/// `known`: what `curve_top_speed` solved for the same curve and cap, where it did (its speeds
+/// and the top's pair not solved again).
 pub fn curve_bands(
     frame: &Frame,
     cells: &[[Vec3; 3]],
     machine: &Machine,
     known: Option<TopSpeeds>,
 ) -> (Limits, Bands) {
-    let (
-        Some(Top {
-            budget,
-            v_curve,
-            v_top,
-        }),
-        _,
-    ) = top(frame, cells, machine, known)
+    let Some(Top {
+        budget,
+        v_curve,
+        v_top,
+    }) = top(frame, cells, machine, known.map(|k| k.map(|(speeds, _)| speeds)))
     else {
         return (frame.limits(cells, machine, NO_SHARES), Bands::default());
     };
     let speeds = band_speeds(v_top, v_curve);
-    let (a, j) = band_pairs(&budget, &speeds);
+    // The top's pair (the last speed's) where `curve_top_speed` found it is not solved again.
+    let (a, j, (a_top, j_top)) = match known {
+        Some(Some((_, pair))) => {
+            let (a, j) = band_pairs::<MAX_BANDS>(&budget, &std::array::from_fn(|k| speeds[k]));
+            (a, j, pair)
+        }
+        _ => {
+            let (a, j) = band_pairs(&budget, &speeds);
+            let cut = |x: [f64; MAX_BANDS + 1]| std::array::from_fn(|k| x[k]);
+            (cut(a), cut(j), (a[MAX_BANDS], j[MAX_BANDS]))
+        }
+    };
     // Room for every level at once (one allocation, kept by the bands).
     let mut levels = Vec::with_capacity(MAX_BANDS);
     levels.extend((0..MAX_BANDS).filter(|&k| speeds[k] < v_top).map(|k| Band {
@@ -282,14 +290,13 @@ pub fn curve_bands(
         a_max: a[k],
         j_max: j[k],
     }));
-    let (a, j) = (a[MAX_BANDS], j[MAX_BANDS]);
     let limits = Limits {
         v_max: v_top,
-        a_max: a,
-        j_max: j,
+        a_max: a_top,
+        j_max: j_top,
         snap_max: machine.max_snap,
     };
-    if a <= 0.0 || j <= 0.0 {
+    if a_top <= 0.0 || j_top <= 0.0 {
         return (frame.limits(cells, machine, NO_SHARES), Bands::default());
     }
     (limits, Bands::keep_below(&limits, levels))
@@ -303,18 +310,19 @@ struct Top<'a> {
     v_top: f64,
 }
 
-/// The speeds a curve's `Top` was solved to (v_curve, v_top), or None where it has no budget:
-/// kept by whoever asks for the top speed first and the bands later (junction.rs).
-pub type TopSpeeds = Option<(f64, f64)>;
+/// The speeds a curve's `Top` was solved to (v_curve, v_top) and the top band's pair there
+/// (`top_pair_speed`), or None where it has no budget: kept by whoever asks for the top speed first
+/// and the bands later (junction.rs).
+pub type TopSpeeds = Option<((f64, f64), (f64, f64))>;
 
 /// The curve's `Top`, or None where it has no budget (its plain limits then), from its speeds
-/// where they are `known`; and those speeds.
+/// (v_curve, v_top) where they are `known`.
 fn top<'a>(
     frame: &Frame,
     cells: &'a [[Vec3; 3]],
     machine: &'a Machine,
-    known: Option<TopSpeeds>,
-) -> (Option<Top<'a>>, TopSpeeds) {
+    known: Option<Option<(f64, f64)>>,
+) -> Option<Top<'a>> {
     let budget = frame.budget(cells, machine, NO_SHARES);
     let speeds = known.unwrap_or_else(|| {
         let v_zero = budget.max_speed(CURVE_SPEED_CEILING).0;
@@ -329,12 +337,11 @@ fn top<'a>(
         };
         (v_top > 0.0 && v_top.is_finite()).then_some((v_curve, v_top))
     });
-    let top = speeds.map(|(v_curve, v_top)| Top {
+    speeds.map(|(v_curve, v_top)| Top {
         budget,
         v_curve,
         v_top,
-    });
-    (top, speeds)
+    })
 }
 
 /// The top speed of `curve_bands`' limits alone: the top band's pair decides whether the curve
@@ -342,16 +349,17 @@ fn top<'a>(
 /// Also what it solved for the top (`TopSpeeds`), which `curve_bands` takes.
 pub fn curve_top_speed(frame: &Frame, cells: &[[Vec3; 3]], machine: &Machine) -> (f64, TopSpeeds) {
     let plain = || frame.limits(cells, machine, NO_SHARES).v_max;
-    let (t, speeds) = top(frame, cells, machine, None);
-    let Some(t) = t else {
-        return (plain(), speeds);
+    let Some(t) = top(frame, cells, machine, None) else {
+        return (plain(), None);
     };
     let above = grid_at_or_above(t.v_top);
     let (a, j) = band_pairs(&t.budget, &[top_pair_speed(t.v_top, t.v_curve, above)]);
-    if a[0] <= 0.0 || j[0] <= 0.0 {
-        (plain(), speeds)
+    let (a, j) = (a[0], j[0]);
+    let solved = Some(((t.v_curve, t.v_top), (a, j)));
+    if a <= 0.0 || j <= 0.0 {
+        (plain(), solved)
     } else {
-        (t.v_top, speeds)
+        (t.v_top, solved)
     }
 }
 
