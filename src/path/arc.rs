@@ -329,11 +329,11 @@ fn top<'a>(
         let v_curve = TOP_SHARE * v_zero;
         // The speed within the caps is the cap or the budget's end, each as solved to a few
         // ulps: with the caps well above the curve's top, it is above that top too, and not
-        // solved.
+        // solved; below it, they are below the end by far more than rounding (`TOP_SHARE`).
         let v_top = if frame.v0 >= v_curve * (1.0 + CAP_MARGIN) {
             v_curve
         } else {
-            v_curve.min(budget.max_speed(frame.v0).0)
+            v_curve.min(budget.max_speed_below_end(frame.v0).0)
         };
         (v_top > 0.0 && v_top.is_finite()).then_some((v_curve, v_top))
     });

@@ -144,9 +144,21 @@ impl Budget<'_> {
                 }
             }
         }
-        let v = v.max(0.0);
-        // Rounding may leave the closed form a hair outside the budget as `at` evaluates it (and
-        // `at` skips the jerk term below NEGLIGIBLE): step down from a few ulps, doubling.
+        self.settle(v.max(0.0))
+    }
+
+    /// `max_speed` of a `v0` below the end that `max_speed` found from above by far more than
+    /// rounding (as the top speed in arc.rs is): each bound's left side grows with v, so none
+    /// binds there, and only `at` is checked (the same speed and budget, without the solves).
+    pub fn max_speed_below_end(&self, v0: f64) -> (f64, (f64, f64)) {
+        let a_min = self.a_min * (1.0 - SHARE_SLACK);
+        self.settle(if self.a_cap >= a_min { v0 } else { 0.0 }.max(0.0))
+    }
+
+    /// The largest speed at or a few ulps below `v` (≥ 0) that has a budget, and the budget there.
+    /// Rounding may leave the closed form a hair outside the budget as `at` evaluates it (and
+    /// `at` skips the jerk term below NEGLIGIBLE): step down from a few ulps, doubling.
+    fn settle(&self, v: f64) -> (f64, (f64, f64)) {
         let mut w = v;
         let mut step = v * f64::EPSILON;
         for _ in 0..FIT_STEPS {
@@ -248,5 +260,31 @@ mod tests {
             );
         }
         assert!(lowered > 200, "too few curves lowered below v0: {lowered}");
+    }
+
+    /// Below the end that `max_speed` finds from above (at `TOP_SHARE` of it, as the top speed in
+    /// arc.rs), `max_speed_below_end` gives what `max_speed` gives, bit for bit.
+    #[test]
+    fn below_the_end_the_solves_are_not_needed() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..1000 {
+            let machine = testing::machine(&mut s);
+            let cells = testing::cells(&mut s, 6, 3.0, -1.0);
+            let (a_free, j_free) = (1.0 + 5.0 * unit(&mut s), 10.0 + 100.0 * unit(&mut s));
+            let tangential = [0.0, 0.1][(unit(&mut s) * 2.0) as usize];
+            let budget = Budget {
+                cells: &cells,
+                machine: &machine,
+                a_cap: a_free,
+                j_free,
+                a_min: tangential * a_free,
+                j_min: tangential * j_free,
+            };
+            let end = budget.max_speed(1e4).0;
+            for v0 in [0.995 * end, 0.5 * end, 0.0] {
+                let bits = |(v, (a, j)): (f64, (f64, f64))| [v, a, j].map(f64::to_bits);
+                assert_eq!(bits(budget.max_speed(v0)), bits(budget.max_speed_below_end(v0)));
+            }
+        }
     }
 }
