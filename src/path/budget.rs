@@ -39,6 +39,15 @@ impl Budget<'_> {
                 }
             }
         }
+        // The shares are what makes a budget worth having, not limits (A_c and J_c are the axis
+        // budgets as computed): a relative slack keeps rounding from punching holes in the set
+        // of speeds that have one (where A_c is the jerk term, J_c = j_min exactly). A_c's share
+        // is checked first: where it fails, J_c is not worked out.
+        let slack = 1.0 - SHARE_SLACK;
+        let a_kept = a_c >= self.a_min * slack;
+        if !a_kept {
+            return None;
+        }
         let mut j_c = self.j_free;
         for cell in self.cells {
             for (i, ax) in axes.iter().enumerate() {
@@ -48,11 +57,7 @@ impl Budget<'_> {
                 }
             }
         }
-        // The shares are what makes a budget worth having, not limits (A_c and J_c are the axis
-        // budgets as computed): a relative slack keeps rounding from punching holes in the set
-        // of speeds that have one (where A_c is the jerk term, J_c = j_min exactly).
-        let slack = 1.0 - SHARE_SLACK;
-        (a_c >= self.a_min * slack && j_c >= self.j_min * slack).then_some((a_c, j_c))
+        (j_c >= self.j_min * slack).then_some((a_c, j_c))
     }
 
     /// At each speed v of `v`: the largest tangential acceleration the centripetal terms leave
