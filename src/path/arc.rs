@@ -16,12 +16,12 @@ pub fn chord_error_speed(radius: f64, chord_tolerance: f64, period: f64) -> f64 
     2.0 * (d * (2.0 * radius - d)).sqrt() / period
 }
 
-/// Largest constant speed on a curve whose arc-length derivatives are bounded by `bounds` per
-/// axis (axis velocity d1·v, acceleration d2·v², jerk d3·v³ at constant speed; eq. 9 is the
-/// circle case: sqrt(A·R) and (J·R²)^(1/3)), also within the path-level limits.
+/// Largest constant speed on a curve whose arc-length derivatives are bounded by `bounds` per axis
+/// (axis velocity d1·v, acceleration d2·v², jerk d3·v³ at constant speed; eq. 9 is the circle case:
+/// sqrt(A·R), (J·R²)^(1/3)), within the path limits; one ∛ of the least J/d3 (∛ rounds correctly).
 pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
     let mut v = machine.max_feed;
-    let (mut d2n, mut d3n): (f64, f64) = (0.0, 0.0);
+    let (mut d2n, mut d3n, mut x3): (f64, f64, f64) = (0.0, 0.0, f64::INFINITY);
     for (i, ax) in machine.axes.iter().enumerate() {
         let [d1, d2, d3] = [bounds[0][i], bounds[1][i], bounds[2][i]];
         if d1 > NEGLIGIBLE {
@@ -31,7 +31,7 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
             v = v.min((ax.max_acceleration / d2).sqrt());
         }
         if d3 > NEGLIGIBLE {
-            v = min_cbrt(v, ax.max_jerk / d3);
+            x3 = x3.min(ax.max_jerk / d3);
         }
         d2n = d2n.max(d2);
         d3n = d3n.max(d3);
@@ -40,9 +40,9 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
         v = v.min((a / d2n).sqrt());
     }
     if let (Some(j), true) = (machine.max_path_jerk, d3n > NEGLIGIBLE) {
-        v = min_cbrt(v, j / d3n);
+        x3 = x3.min(j / d3n);
     }
-    v
+    min_cbrt(v, x3)
 }
 
 /// min(v, ∛x), the root taken only where it may be the smaller: where x exceeds v³ by far more
