@@ -1,7 +1,7 @@
 //! Path limits of arcs and other curves: seed 004 §2.3–2.4 (eq. 17–24) with the chord-error
 //! limit of seed 003.
 
-use super::budget::Budget;
+use super::budget::{max_bounds, Budget};
 use super::tolerance::{CUBE_MARGIN, NEGLIGIBLE};
 use crate::config::Machine;
 use crate::feed::bands::{Band, Bands, MAX_BANDS};
@@ -18,7 +18,7 @@ pub fn chord_error_speed(radius: f64, chord_tolerance: f64, period: f64) -> f64 
 
 /// Largest constant speed on a curve whose arc-length derivatives are bounded by `bounds` per axis
 /// (axis velocity d1·v, acceleration d2·v², jerk d3·v³ at constant speed; eq. 9 is the circle case:
-/// sqrt(A·R), (J·R²)^(1/3)), within the path limits; one ∛ of the least J/d3 (∛ rounds correctly).
+/// sqrt(A·R), (J·R²)^(1/3)), within the path limits; one ∛, of the least J/d3 (∛ is monotone).
 pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
     let mut v = machine.max_feed;
     let (mut d2n, mut d3n, mut x3): (f64, f64, f64) = (0.0, 0.0, f64::INFINITY);
@@ -386,19 +386,6 @@ fn band_pairs<const N: usize>(budget: &Budget, v: &[f64; N]) -> ([f64; N], [f64;
         }
     });
     (a, j)
-}
-
-/// Largest per-axis bounds over the cells.
-pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
-    let mut b = [[0.0f64; 3]; 3];
-    for cell in cells {
-        for (acc, new) in b.iter_mut().zip(cell) {
-            for i in 0..3 {
-                acc[i] = acc[i].max(new[i]);
-            }
-        }
-    }
-    b
 }
 
 #[cfg(test)]

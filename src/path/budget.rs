@@ -210,6 +210,19 @@ fn jerk_speed(d3: f64, c: f64, left: f64) -> f64 {
     }
 }
 
+/// Largest per-axis bounds over the cells.
+pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
+    let mut b = [[0.0f64; 3]; 3];
+    for cell in cells {
+        for (acc, new) in b.iter_mut().zip(cell) {
+            for i in 0..3 {
+                acc[i] = acc[i].max(new[i]);
+            }
+        }
+    }
+    b
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -37,8 +37,9 @@ mod source_map;
 mod testing;
 pub mod tolerance;
 
-pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, max_bounds, Shares};
+pub use arc::{arc_limits, chord_error_speed, constant_speed_limit, curve_limits, Shares};
 pub use blend::Blend;
+pub use budget::max_bounds;
 pub use chain::{Chain, Curve, Piece};
 pub use corner::{circular_blend, circular_blend_speed, corner_feed, curvature_change_speed, step_jerk};
 pub use hermite::{Hermite, Jet};
