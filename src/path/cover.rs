@@ -20,6 +20,23 @@ use super::tolerance::TRANSITION_SAMPLES;
 use crate::geometry::{add, dot, norm, scale, sub, Arc, AtAngle, Line, Source};
 use crate::Vec3;
 
+/// The distance from each sample of a transition to the move its tolerance check measures
+/// first (`lead`), carried from the cut search to the reported line (source_map.rs), which
+/// needs the same distances; None between two lines (checked in closed form).
+pub(super) type Leads = Option<[f64; TRANSITION_SAMPLES + 1]>;
+
+/// The move the tolerance check of sample k measures first, the one nearest the sample's end
+/// of the corner, as an index into the `before` moves then the `after` ones.
+pub(super) fn lead(k: usize, before: usize, after: usize) -> usize {
+    if 2 * k <= TRANSITION_SAMPLES {
+        before.saturating_sub(1)
+    } else if after > 0 {
+        before
+    } else {
+        before - 1
+    }
+}
+
 /// A transition's sample spacing and the bounds its guards come from.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Guards {
@@ -211,7 +228,7 @@ mod tests {
                 Hermite::new(a, b, 2.0 * share * d)
             };
             let (ins, outs) = (std::slice::from_ref(&before), std::slice::from_ref(&after));
-            let admits = |d: f64| within_tolerance(&curve(d), ins, outs);
+            let admits = |d: f64| within_tolerance(&curve(d), ins, outs).is_some();
             let (mut lo, mut hi) = (tol * 1e-3, 0.5 * length.min(after.source.length()));
             if !admits(lo) || admits(hi) {
                 continue;

@@ -10,7 +10,7 @@
 mod cost;
 
 use super::chain::{Curve, CurveLimits, Own};
-use super::cover::Guards;
+use super::cover::{lead, Guards, Leads};
 use super::hermite::{Hermite, Jet};
 use super::slowest_axis;
 use super::smooth::{jet_at, Move, Span};
@@ -119,13 +119,13 @@ fn cut_curve(held: &Span, next: &Span, d: f64, share: f64) -> Hermite {
     Hermite::new(a, b, 2.0 * share * d)
 }
 
-/// The transition between `held` and `next`: the cuts on both sides and the curve, or None
-/// (stop) at a reversal or when no cut keeps the tolerance.
+/// The transition between `held` and `next`: the cuts on both sides, the curve, its limits and
+/// its samples' `Leads`, or None (stop) at a reversal or when no cut keeps the tolerance.
 pub(super) fn transition(
     held: &mut Span,
     next: &mut Span,
     m: &Machine,
-) -> Option<(f64, f64, Hermite, CurveLimits)> {
+) -> Option<(f64, f64, Hermite, CurveLimits, Leads)> {
     let (w, reach) = corner(held, next)?;
     let tol = held.last.tolerance;
     // Two lines: the largest deviation is at the apex, in closed form (`apex_share`).
@@ -240,7 +240,7 @@ pub(super) fn transition(
         }
     }
     let limits = best.own.limits(m);
-    Some((best.d, best.d, best.h, limits))
+    Some((best.d, best.d, best.h, limits, best.leads))
 }
 
 /// A transition's speed at this share of the feed (or of its slower neighbour's speed) or above
@@ -262,6 +262,8 @@ struct Found {
     share: f64,
     /// Its index on the junction's grid of cuts.
     k: i32,
+    /// Its samples' distances from the tolerance check (set once it is checked).
+    leads: Leads,
 }
 
 /// Shares of 2d tried as the transition's parameter length λ (cut d on both sides, |p'| = 1 at
@@ -322,11 +324,13 @@ impl Search<'_> {
         Some((d, cut_curve(self.held, self.next, d, share)))
     }
 
-    fn within(&self, d: f64, h: &Hermite) -> bool {
-        self.lines || {
-            let (before, after) = (self.held.moves_at_end(d), self.next.moves_at_start(d));
-            within_tolerance(h, before, after)
+    /// The curve `h` of cut `d` within the tolerance: with its samples' `Leads`.
+    fn within(&self, d: f64, h: &Hermite) -> Option<Leads> {
+        if self.lines {
+            return Some(None);
         }
+        let (before, after) = (self.held.moves_at_end(d), self.next.moves_at_start(d));
+        within_tolerance(h, before, after).map(Some)
     }
 
     /// The speed cut `d` is costed at: its own top speed `v_max`, no faster than the slower
@@ -395,6 +399,7 @@ impl Search<'_> {
             v: v_max,
             share,
             k,
+            leads: None,
         }
     }
 
@@ -427,16 +432,18 @@ impl Search<'_> {
         let mut stop_tries = 0;
         for _ in 0..MAX_SHRINKS {
             let (d, h) = self.at(k, first, share)?;
-            if !self.within(d, &h) {
+            let Some(leads) = self.within(d, &h) else {
                 k += 1;
                 continue;
-            }
+            };
             // A shorter cut may beat a stop where the longest does not (its time grows as √d, a
             // jerk-limited stop's as ∛d): a larger tolerance, which admits it too, must not stop
             // where a smaller one runs through.
             match faster_than_a_stop(&h, self.feed, m) {
                 Some(speed) => {
-                    best = Some(self.found(k, d, h, speed, share, None));
+                    let mut found = self.found(k, d, h, speed, share, None);
+                    found.leads = leads;
+                    best = Some(found);
                     break;
                 }
                 None if stop_tries == STOP_TRIES => return None,
@@ -468,8 +475,10 @@ impl Search<'_> {
             let v_max = own.speed(m);
             // Where the neighbours cap both speeds alike, the cost is the one just found.
             let known = Some((v_ceiling, at_ceiling));
-            let shorter = self.found(k, d, h, (v_max, own), share, known);
-            (shorter.cost < best.cost - SAVING && self.within(d, &shorter.h)).then_some(shorter)
+            let mut shorter = self.found(k, d, h, (v_max, own), share, known);
+            (shorter.cost < best.cost - SAVING).then_some(())?;
+            shorter.leads = self.within(d, &shorter.h)?;
+            Some(shorter)
         };
         // Down by halves while cheaper.
         while let Some(shorter) = try_at(best.k + OCTAVE, &best) {
@@ -506,22 +515,28 @@ const STOP_TRIES: u32 = 4;
 
 /// Every point of `h` within the tolerance of one of the programmed moves it replaces (`before`
 /// and `after` the corner, in path order): each of its samples keeps the half-steps about it
-/// within the tolerance of one (cover.rs).
-pub(super) fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> bool {
+/// within the tolerance of one (cover.rs). Its samples' `Leads`, or None where it is not.
+pub(super) fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> Leads {
     let g = Guards::of(h);
+    let mut leads = [0.0; TRANSITION_SAMPLES + 1];
     // From the middle outwards: a cut too long fails first near the apex, where the transition
     // is farthest from both pieces (the cut search tries several before one keeps it).
     let half = TRANSITION_SAMPLES / 2;
     let order = (0..=half).flat_map(|i| [half - i, half + i]).skip(1);
-    order.into_iter().all(|k| {
+    let all = order.into_iter().all(|k| {
         let s = g.sample(h, k);
         let near = |mv: &Move| g.holds(mv, &s, mv.source.distance(s.p));
         // The moves nearest the sample's end of the transition first (the others often need
-        // no distance).
-        if 2 * k <= TRANSITION_SAMPLES {
-            before.iter().rev().chain(after).any(near)
-        } else {
-            after.iter().chain(before.iter().rev()).any(near)
-        }
-    })
+        // no distance); the first one's distance is kept (`Leads`).
+        let i = lead(k, before.len(), after.len());
+        let first = before.get(i).unwrap_or_else(|| &after[i - before.len()]);
+        leads[k] = first.source.distance(s.p);
+        g.holds(first, &s, leads[k])
+            || if 2 * k <= TRANSITION_SAMPLES {
+                before.iter().rev().chain(after).skip(1).any(near)
+            } else {
+                after.iter().chain(before.iter().rev()).skip(1).any(near)
+            }
+    });
+    all.then_some(leads)
 }

@@ -309,13 +309,13 @@ impl SmoothBuilder {
             return;
         }
         match transition(&mut held, &mut next, m) {
-            Some((d_held, d_next, h, limits)) => {
+            Some((d_held, d_next, h, limits, leads)) => {
                 let symmetric = matches!(
                     (held.piece.curve, next.piece.curve),
                     (Curve::Line(_), Curve::Line(_))
                 );
                 let (before, after) = (held.moves_at_end(d_held), next.moves_at_start(d_next));
-                let (line, marks) = source_map::transition_marks(&h, before, after, symmetric);
+                let (line, marks) = source_map::transition_marks(&h, before, after, symmetric, &leads);
                 held.piece.u1 -= d_held;
                 next.piece.u0 += d_next;
                 let own = held.own.take();

@@ -15,11 +15,12 @@
 //!   its foot on the line lies in: the point is within the tolerance of the line, so of that
 //!   move.
 
-use super::cover::Guards;
+use super::cover::{lead, Guards, Leads};
 use super::hermite::Hermite;
 use super::smooth::{programmed, start_of, Move};
 use super::tolerance::{FOOT_BISECTIONS, TRANSITION_SAMPLES};
 use crate::geometry::{dot, sub, unit, Source};
+use crate::Vec3;
 
 /// Where each move after the first begins on the span fitted over `moves` (its parameter u).
 pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
@@ -40,12 +41,14 @@ pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
 /// the tolerance check reports the nearest move from the last one's on (`nearest_onwards`), or,
 /// where that leaves a sample out of reach of its move, the moves in reach in path order
 /// (`in_reach`); the report changes halfway between samples: the half-steps about a sample keep
-/// the tolerance of the move it reports (cover.rs).
+/// the tolerance of the move it reports (cover.rs). `leads`: the distances the cut search's
+/// tolerance check measured on `h` (the same samples), taken rather than measured again.
 pub(super) fn transition_marks(
     h: &Hermite,
     before: &[Move],
     after: &[Move],
     symmetric: bool,
+    leads: &Leads,
 ) -> (u32, Vec<(f64, u32)>) {
     let mut marks = Vec::new();
     if symmetric {
@@ -59,7 +62,12 @@ pub(super) fn transition_marks(
     }
     let moves: Vec<&Move> = before.iter().chain(after).collect();
     let g = Guards::of(h);
-    let (own, marks, held) = nearest_onwards(h, &moves, &g);
+    let distances = Distances {
+        moves: &moves,
+        before: before.len(),
+        leads,
+    };
+    let (own, marks, held) = nearest_onwards(h, &distances, &g);
     if held {
         return (own, marks);
     }
@@ -73,18 +81,18 @@ pub(super) fn transition_marks(
 /// that is out of reach and the last is not); the report changes halfway between samples. Also
 /// whether every sample keeps the half-steps about it within the tolerance of the move it
 /// reports (cover.rs).
-fn nearest_onwards(h: &Hermite, moves: &[&Move], g: &Guards) -> (u32, Vec<(f64, u32)>, bool) {
+fn nearest_onwards(h: &Hermite, ds: &Distances, g: &Guards) -> (u32, Vec<(f64, u32)>, bool) {
+    let moves = ds.moves;
     let (mut at, mut own, mut marks, mut held) = (0, moves[0].line, Vec::new(), true);
     for k in 0..=TRANSITION_SAMPLES {
         let s = g.sample(h, k);
-        let p = s.p;
         // The nearest move from `at` on (the first of equals), and the distance to `at`'s.
-        let d0 = moves[at].source.distance(p);
+        let d0 = ds.of(at, k, s.p);
         let (mut j, mut dj) = (0, d0);
-        for (i, mv) in moves[at + 1..].iter().enumerate() {
-            let d = mv.source.distance(p);
+        for i in 1..moves.len() - at {
+            let d = ds.of(at + i, k, s.p);
             if d < dj {
-                (j, dj) = (i + 1, d);
+                (j, dj) = (i, d);
             }
         }
         let d_at = if j > 0 && (g.holds(moves[at + j], &s, dj) || !g.holds(moves[at], &s, d0)) {
@@ -102,6 +110,25 @@ fn nearest_onwards(h: &Hermite, moves: &[&Move], g: &Guards) -> (u32, Vec<(f64, 
         }
     }
     (own, marks, held)
+}
+
+/// The moves a transition replaces (those before it, then those after) and the distances to
+/// them its tolerance check measured (`Leads`).
+struct Distances<'a> {
+    moves: &'a [&'a Move],
+    before: usize,
+    leads: &'a Leads,
+}
+
+impl Distances<'_> {
+    /// The distance from sample k (at `p`) to move i: the tolerance check's where it measured
+    /// it, the same value.
+    fn of(&self, i: usize, k: usize, p: Vec3) -> f64 {
+        match self.leads {
+            Some(leads) if i == lead(k, self.before, self.moves.len() - self.before) => leads[k],
+            _ => self.moves[i].source.distance(p),
+        }
+    }
 }
 
 /// The reports where each sample of `h` reports a move it keeps the half-steps about it within
@@ -223,10 +250,15 @@ mod tests {
         };
         let h = Hermite::new(jet([0.001, 0.0035, 0.0]), jet([0.5, 0.0, 0.0]), 0.5);
         let all: Vec<&Move> = moves.iter().collect();
-        let (own, _, held) = nearest_onwards(&h, &all, &Guards::of(&h));
+        let ds = Distances {
+            moves: &all,
+            before: 1,
+            leads: &None,
+        };
+        let (own, _, held) = nearest_onwards(&h, &ds, &Guards::of(&h));
         assert_eq!((own, held), (12, false));
         assert_eq!(
-            transition_marks(&h, &moves[..1], &moves[1..], false),
+            transition_marks(&h, &moves[..1], &moves[1..], false, &None),
             (10, vec![])
         );
     }
