@@ -129,7 +129,7 @@ impl Budget<'_> {
     pub fn max_speed(&self, v0: f64) -> (f64, (f64, f64)) {
         // The share of A_c as `at` checks it (J_c's follows from A_c's jerk term).
         let a_min = self.a_min * (1.0 - SHARE_SLACK);
-        let mut v = if self.a_cap >= a_min { v0 } else { 0.0 };
+        let mut v = self.start(v0, a_min);
         for cell in self.cells {
             for (i, ax) in self.machine.axes.iter().enumerate() {
                 let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
@@ -156,8 +156,17 @@ impl Budget<'_> {
     /// rounding (as the top speed in arc.rs is): each bound's left side grows with v, so none
     /// binds there, and only `at` is checked (the same speed and budget, without the solves).
     pub fn max_speed_below_end(&self, v0: f64) -> (f64, (f64, f64)) {
-        let a_min = self.a_min * (1.0 - SHARE_SLACK);
-        self.settle(if self.a_cap >= a_min { v0 } else { 0.0 }.max(0.0))
+        self.settle(self.start(v0, self.a_min * (1.0 - SHARE_SLACK)).max(0.0))
+    }
+
+    /// Where a search for the largest speed starts: `v0`, or 0 where the cap leaves A_c less
+    /// than its share `a_min` (as `at` checks it) at every speed.
+    fn start(&self, v0: f64, a_min: f64) -> f64 {
+        if self.a_cap >= a_min {
+            v0
+        } else {
+            0.0
+        }
     }
 
     /// The largest speed at or a few ulps below `v` (≥ 0) that has a budget, and the budget there.
