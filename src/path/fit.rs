@@ -256,14 +256,22 @@ impl SmoothBuilder {
         let alone = moves.len() > 1 && span.from == 0 && span.to == span.run.len() && self.at_rest();
         // Its limits: its top speed first, which the first two tests take; its bands only for
         // the third, and where it is kept (those of a curve the first two reject are not needed).
+        // Over one line between two corners of the run, the line's time does not take that
+        // speed: where even its ceiling is slower, the speed is not solved.
         let kept = || {
             let mut own = Own::of(&h, first.feed, m);
+            let inner = its_line_time(span, None, m);
+            if inner.is_some_and(|line| slower_than_its_line(h.length(), own.ceiling(), line)) {
+                return None;
+            }
             let class = own.speed(m);
             let mut stops = stops_time(moves, m);
             if alone {
                 stops = stops.min(corners_time(span, class, m));
             }
-            if slower_than_stops(h.length(), class, stops) || slower_than_its_line(span, h.length(), class, m)
+            let line = || inner.or_else(|| its_line_time(span, Some(class), m));
+            if slower_than_stops(h.length(), class, stops)
+                || line().is_some_and(|line| slower_than_its_line(h.length(), class, line))
             {
                 return None;
             }
@@ -287,22 +295,33 @@ impl SmoothBuilder {
 }
 
 /// Whether a curve of `length` and top speed `class` over one programmed line is slower than
-/// the line run between the transitions at its corners (their speeds, where they lie within
-/// the run; else at the curve's speed): the curve's time at its top speed is above the line's
-/// block from one corner's speed to the other's, within its feed and limits.
-fn slower_than_its_line(span: Fit, length: f64, class: f64, m: &Machine) -> bool {
+/// that line run between the transitions at its corners, whose time is `line`
+/// (`its_line_time`): the curve's time at its top speed is above the line's.
+fn slower_than_its_line(length: f64, class: f64, line: f64) -> bool {
+    length > class * line
+}
+
+/// Over one programmed line, the time of its block from one corner's speed to the other's,
+/// within its feed and limits: the speeds of the transitions at its corners where they lie
+/// within the run, else the curve's top speed `class` (`None` where that is not solved yet).
+/// `None` over several moves.
+fn its_line_time(span: Fit, class: Option<f64>, m: &Machine) -> Option<f64> {
     if span.to - span.from != 1 {
-        return false;
+        return None;
     }
     let corner = |k: usize| {
         if k >= 1 && k < span.run.len() {
-            span.vertices.corner_speed(span.run, k, m)
+            Some(span.vertices.corner_speed(span.run, k, m))
         } else {
             class
         }
     };
-    let line = line_time(&span.run[span.from], corner(span.from), corner(span.to), m);
-    length > class * line
+    Some(line_time(
+        &span.run[span.from],
+        corner(span.from)?,
+        corner(span.to)?,
+        m,
+    ))
 }
 
 /// Time of `moves` each run from rest to rest at its feed within its line's limits: a bound on
