@@ -283,15 +283,20 @@ impl<'a> Rise<'a> {
         merge(&self.fwd.as_slice()[..end], bwd.as_slice(), hi, take);
     }
 
-    /// The sums of the rise below level k's floor with B leaving k at A_k (`below`).
+    /// The sums of the rise below level k's floor with B leaving k at A_k (`below`). That B
+    /// comes onto a plateau at a level j < k too, below which it is j's: the sums kept for j go
+    /// on from there, as in `time_distance` (a search that moves across levels sums each once).
     fn below(&self, k: usize) -> (f64, f64) {
         if let Some(sums) = self.below.borrow()[k] {
             return sums;
         }
         let (floor, mut bwd) = (self.levels[k].floor, Pieces::default());
-        backward_from(&self.levels[..k], floor, self.levels[k].a, &mut bwd, false);
+        let j = backward_from(&self.levels[..k], floor, self.levels[k].a, &mut bwd, true);
         let mut sum = Sum::default();
-        let fwd = &self.fwd.as_slice()[..self.starts[k]];
+        if j > 0 {
+            (sum.t, sum.s) = self.below(j);
+        }
+        let fwd = &self.fwd.as_slice()[self.starts[j]..self.starts[k]];
         merge(fwd, bwd.as_slice(), floor, |p| sum.add(p));
         self.below.borrow_mut()[k] = Some((sum.t, sum.s));
         (sum.t, sum.s)
