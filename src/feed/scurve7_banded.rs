@@ -64,7 +64,7 @@ pub fn ramp_distance(b: &Banded, v1: f64, v2: f64) -> f64 {
 /// the distance grows with v. Bracketed by the block's top speed first (the look-ahead seldom
 /// needs more), else by doubling; then regula falsi on the distance as evaluated.
 pub fn max_speed(b: &Banded, length: f64, v0: f64) -> f64 {
-    Rise::from(b, v0.max(0.0)).max_speed(length)
+    Rise::build_in(&mut None, b, v0.max(0.0)).max_speed(length)
 }
 
 /// One band's limits for scurve7's closed forms: inside one band the banded law is scurve7's
@@ -253,9 +253,10 @@ fn speeds<R>(
         let drop = |x: f64| d(v_in, x) - length;
         if v_out > v_in {
             // `max_speed`, from a rise kept for the ramp.
-            let up = Rise::from(b, v_in.max(0.0));
+            let mut up = None;
+            let up = Rise::build_in(&mut up, b, v_in.max(0.0));
             let v = up.max_speed(length).min(v_out);
-            return then((length, v_in, v, v), &[&up]);
+            return then((length, v_in, v, v), &[up]);
         }
         let d_stop = d(v_in, 0.0);
         let v_end = if d_stop <= length {
@@ -270,18 +271,15 @@ fn speeds<R>(
     // Above both ends, each ramp rises from its end: the forward envelopes built once (one
     // when the ends are equal, the two ramps then the same sum).
     // Each rise is a few kB: built where it stays.
-    let up = Rise::from(b, v_in);
-    let down_rise;
-    let down = if v_out != v_in {
-        down_rise = Rise::from(b, v_out);
-        Some(&down_rise)
-    } else {
-        None
-    };
-    let v_c = peak(length, (v_in, v_out, v_feed), d_through, &up, down);
+    let (mut up, mut down) = (None, None);
+    let up = Rise::build_in(&mut up, b, v_in);
+    let down = (v_out != v_in)
+        .then_some(&mut down)
+        .map(|down| Rise::build_in(down, b, v_out));
+    let v_c = peak(length, (v_in, v_out, v_feed), d_through, up, down);
     match down {
-        Some(down) => then((length, v_in, v_c, v_out), &[&up, down]),
-        None => then((length, v_in, v_c, v_out), &[&up]),
+        Some(down) => then((length, v_in, v_c, v_out), &[up, down]),
+        None => then((length, v_in, v_c, v_out), &[up]),
     }
 }
 

@@ -150,9 +150,12 @@ pub(super) fn transition(
     });
     let banded = ends.each_ref().map(|e| e.as_ref().map(End::banded));
     // Each rise is a few kB: built where it stays, not moved through an array.
-    let rise = |k: usize| Some(Rise::from(banded[k].as_ref()?, ends[k].as_ref()?.v));
-    let (before, after) = (rise(0), rise(1));
-    let rises = [before.as_ref(), after.as_ref()];
+    let mut slots = [None, None];
+    let [before, after] = &mut slots;
+    let rises = [(before, 0), (after, 1)].map(|(slot, k)| match (&banded[k], &ends[k]) {
+        (Some(b), Some(end)) => Some(Rise::build_in(slot, b, end.v)),
+        _ => None,
+    });
     for (side, (rise, length)) in sides.iter_mut().zip(rises.into_iter().zip(lengths)) {
         if let Some(rise) = rise {
             side.v = side.v.min(rise.max_speed(length));

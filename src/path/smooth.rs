@@ -513,7 +513,8 @@ pub(super) fn joined_loss(
     // (v_slow is finite and above 0 here, the block's entry as planned).
     let (duration, v_peak, rise) = scurve7_banded::plan_time_rise(&banded, l_fast, v_slow, v_slow, v_fast);
     let loss = chain_loss + (l_fast / v_slow - duration).max(0.0);
-    let from_rest = scurve7_banded::Rise::from(&banded, 0.0);
+    let mut from_rest = None;
+    let from_rest = scurve7_banded::Rise::build_in(&mut from_rest, &banded, 0.0);
     let t = |v: f64| from_rest.time_distance(v).0;
     let (t_slow, fast_reach) = from_rest.time_distance(v_slow);
     let through = t_slow + rise - t(v_peak);

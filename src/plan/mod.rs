@@ -335,7 +335,7 @@ impl Planner {
             // The largest exit, where it is below a target above 0 (at or above, the target).
             let range = (f64::NEG_INFINITY, target);
             let reach = if target > 0.0 && banded.joined() {
-                Rise::from(&banded, v_in.max(0.0)).max_speed_within(length, range)
+                Rise::build_in(&mut None, &banded, v_in.max(0.0)).max_speed_within(length, range)
             } else {
                 Some(banded.max_exit(length, v_in))
             };
@@ -480,7 +480,7 @@ fn stop_is_below(banded: &Banded, length: f64, v: f64) -> bool {
 /// search until then; `Rise::max_speed_within`).
 fn max_entry_within(banded: &Banded, length: f64, v_out: f64, range: (f64, f64)) -> Option<f64> {
     if banded.joined() {
-        Rise::from(banded, v_out.max(0.0)).max_speed_within(length, range)
+        Rise::build_in(&mut None, banded, v_out.max(0.0)).max_speed_within(length, range)
     } else {
         Some(banded.max_entry(length, v_out))
     }

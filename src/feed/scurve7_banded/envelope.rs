@@ -225,18 +225,25 @@ pub struct Rise<'a> {
 }
 
 impl<'a> Rise<'a> {
-    // Inlined, to be built where it is used; its lists are never zeroed (many are built, one per
-    // start speed asked).
-    #[inline(always)]
+    /// The rises from `lo`, by value (a copy of a few kB: hot callers use `build_in`).
     pub fn from(b: &'a Banded<'a>, lo: f64) -> Rise<'a> {
-        let mut rise = Rise {
+        let mut slot = None;
+        Rise::build_in(&mut slot, b, lo);
+        slot.expect("built")
+    }
+
+    /// `from`, built in `slot` (a few kB, filled where it stays: a rise returned by value is
+    /// copied whole). Its lists are never zeroed (many are built, one per start speed asked).
+    #[inline(always)]
+    pub fn build_in<'s>(slot: &'s mut Option<Rise<'a>>, b: &'a Banded<'a>, lo: f64) -> &'s Rise<'a> {
+        let rise = slot.insert(Rise {
             b,
             lo,
             levels: Levels::new(),
             fwd: Pieces::default(),
             starts: Starts::new(),
             below: RefCell::new(ArrayVec::new()),
-        };
+        });
         levels_into(b, lo, f64::INFINITY, &mut rise.levels);
         forward_into(&rise.levels, &mut rise.fwd, &mut rise.starts);
         rise.below.get_mut().extend(rise.levels.iter().map(|_| None));

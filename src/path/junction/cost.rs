@@ -175,7 +175,12 @@ fn rise(banded: &Banded, v0: f64, v_side: f64, rest: f64) -> (f64, f64) {
         scurve7::rise_within(v0, v_side, rest, banded.top)
     } else {
         // Every ramp here rises from v (one forward envelope).
-        ramp_within(&scurve7_banded::Rise::from(banded, v0), v_side, rest)
+        let mut rise = None;
+        ramp_within(
+            scurve7_banded::Rise::build_in(&mut rise, banded, v0),
+            v_side,
+            rest,
+        )
     }
 }
 
