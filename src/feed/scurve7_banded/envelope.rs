@@ -47,6 +47,28 @@ impl Piece {
     }
 }
 
+/// `x.min(y)` for a `y` that is not NaN, in one comparison where `min` takes several: a NaN `x`
+/// gives `y` as `min` does, and of equal values it may take the other zero's sign, which moves
+/// no comparison and no divisor here, and no sum (each starts at +0).
+#[inline(always)]
+fn lesser(x: f64, y: f64) -> f64 {
+    if x < y {
+        x
+    } else {
+        y
+    }
+}
+
+/// `x.max(y)` likewise (`lesser`).
+#[inline(always)]
+fn greater(x: f64, y: f64) -> f64 {
+    if x > y {
+        x
+    } else {
+        y
+    }
+}
+
 /// A fixed-capacity list of pieces, by increasing speed (or decreasing, as built); never
 /// zeroed (many are built, few pieces each).
 #[derive(Clone, Debug, Default)]
@@ -90,8 +112,8 @@ fn levels_into(b: &Banded, lo: f64, hi: f64, out: &mut Levels) {
     let bands = b.bands.levels().iter().map(|l| (l.v_top, l.a_max, l.j_max));
     let mut floor_k: f64 = 0.0;
     for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
-        let floor = floor_k.max(lo);
-        if top_k.min(hi) > floor && !out.is_full() {
+        let floor = greater(lo, floor_k);
+        if lesser(hi, top_k) > floor && !out.is_full() {
             out.push(Level {
                 floor,
                 top: top_k,
@@ -114,9 +136,9 @@ fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut Starts) {
     let mut f: f64 = 0.0;
     for l in levels {
         starts.push(fwd.len());
-        f = f.min(l.a);
+        f = lesser(f, l.a);
         let reach = l.floor + (l.a * l.a - f * f) / (2.0 * l.j);
-        let end = reach.min(l.top);
+        let end = lesser(reach, l.top);
         fwd.push(Piece {
             v0: l.floor,
             v1: end,
@@ -146,10 +168,10 @@ fn forward_into(levels: &[Level], fwd: &mut Pieces, starts: &mut Starts) {
 #[inline(always)]
 fn backward_from(levels: &[Level], hi: f64, mut g: f64, bwd: &mut Pieces, to_plateau: bool) -> usize {
     for (k, l) in levels.iter().enumerate().rev() {
-        let top = l.top.min(hi);
-        let g0 = g.min(l.a);
+        let top = lesser(hi, l.top);
+        let g0 = lesser(g, l.a);
         let reach = top - (l.a * l.a - g0 * g0) / (2.0 * l.j);
-        let start = reach.max(l.floor);
+        let start = greater(reach, l.floor);
         bwd.push(Piece {
             v0: start,
             v1: top,
@@ -180,11 +202,11 @@ fn merge(fwd: &[Piece], bwd: &[Piece], hi: f64, mut take: impl FnMut(&Piece)) {
     let (mut i, mut k) = (0, bwd.len());
     while i < fwd.len() && fwd[i].v0 < hi && k > 0 {
         let fp = &Piece {
-            v1: fwd[i].v1.min(hi),
+            v1: lesser(fwd[i].v1, hi),
             ..fwd[i]
         };
         let bp = &bwd[k - 1];
-        let (u0, u1) = (fp.v0.max(bp.v0), fp.v1.min(bp.v1));
+        let (u0, u1) = (greater(fp.v0, bp.v0), lesser(fp.v1, bp.v1));
         if u1 > u0 {
             let d = |u: f64| (fp.alpha - bp.alpha) + (fp.beta - bp.beta) * u;
             let (d0, d1) = (d(u0), d(u1));
