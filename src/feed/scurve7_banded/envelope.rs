@@ -108,9 +108,12 @@ struct Level {
 /// not: see `Level`).
 fn levels_into(b: &Banded, lo: f64, hi: f64, out: &mut Levels) {
     // Band k as `Banded::limits`, `floor_of` and `top_of` give it, read in one walk: the band
-    // levels, then the block's own limits above them (no top).
-    let bands = b.bands.levels().iter().map(|l| (l.v_top, l.a_max, l.j_max));
-    let mut floor_k: f64 = 0.0;
+    // levels, then the block's own limits above them (no top). The bands (by increasing speed)
+    // whose tops are at or below lo are passed over: none is taken (lo is their floor or above).
+    let levels = b.bands.levels();
+    let first = levels.partition_point(|l| l.v_top <= lo);
+    let bands = levels[first..].iter().map(|l| (l.v_top, l.a_max, l.j_max));
+    let mut floor_k: f64 = first.checked_sub(1).map_or(0.0, |k| levels[k].v_top);
     for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
         let floor = greater(lo, floor_k);
         if lesser(hi, top_k) > floor && !out.is_full() {
