@@ -228,6 +228,11 @@ fn merge(fwd: &[Piece], bwd: &[Piece], hi: f64, mut take: impl FnMut(&Piece)) {
         }
         if fp.v1 <= bp.v1 {
             i += 1;
+            // Both end here: the next F piece starts at or above bp's end, so the step after
+            // would take nothing and go on to the next B piece.
+            if fp.v1 == bp.v1 {
+                k -= 1;
+            }
         } else {
             k -= 1;
         }
