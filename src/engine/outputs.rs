@@ -37,14 +37,11 @@ impl Outputs {
     }
 }
 
-/// Exponent bits all set: infinite or NaN.
-const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
-
-/// Whether any value is infinite or NaN (independent integer tests, no chain of float adds).
-fn any_non_finite(values: &[f64]) -> bool {
-    values
-        .iter()
-        .fold(false, |bad, v| bad | (v.to_bits() & EXPONENT == EXPONENT))
+/// Zero where every value is finite, NaN otherwise: x·0 is ±0 for a finite x and NaN for an
+/// infinite or NaN one, and a NaN stays NaN through the sum (a multiply and an add a value).
+fn zero_if_finite(values: &[f64]) -> f64 {
+    // −0 + y is y for every y: the sum starts at the first product.
+    values.iter().fold(-0.0, |sum, v| sum + v * 0.0)
 }
 
 impl Engine {
@@ -52,28 +49,26 @@ impl Engine {
     /// every tick by the CLI: one test of everything first, the names only on a failure.
     pub fn check_outputs(&self) -> Result<(), String> {
         let t = self.tick();
-        let [p, v, a] = [t.p, t.v, t.a];
-        let command = [p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2], t.feed];
-        let bad = if self.servo() {
+        let command = zero_if_finite(&t.p) + zero_if_finite(&t.v) + zero_if_finite(&t.a);
+        let all = if self.servo() {
             let o = &self.outputs;
-            let [x, y, z] = o.axes.map(|s| [s.position, s.velocity, s.motor_torque]);
-            any_non_finite(&command)
-                || any_non_finite(&x)
-                || any_non_finite(&y)
-                || any_non_finite(&z)
-                || !o.contour_error.is_finite()
+            o.axes.iter().fold(command, |sum, s| {
+                sum + zero_if_finite(&[s.position, s.velocity, s.motor_torque])
+            }) + zero_if_finite(&[t.feed, o.contour_error])
         } else {
             // The actual axes are the command; the contour error is 0 when the tangent is
             // finite (the point is on its line), NaN otherwise.
-            any_non_finite(&command) || any_non_finite(&t.tangent)
+            command + zero_if_finite(&t.tangent) + zero_if_finite(&[t.feed])
         };
-        if !bad {
+        if all == 0.0 {
             return Ok(());
         }
         self.name_non_finite()
     }
 
     /// The first output that is NaN or infinite, named.
+    #[cold]
+    #[inline(never)]
     fn name_non_finite(&self) -> Result<(), String> {
         let (t, axes) = (self.tick(), self.axes());
         let named: [(&str, [f64; 3]); 6] = [
