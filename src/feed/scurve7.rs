@@ -405,15 +405,33 @@ impl Scurve7 {
 
     /// Jerk of each phase (m/s³).
     pub fn jerk(&self) -> [f64; 7] {
-        let [j1, j2] = self.ramp_jerk;
-        [j1, 0.0, -j1, 0.0, j2, 0.0, -j2]
+        std::array::from_fn(|k| self.jerk_of(k))
     }
 
     /// Acceleration at each phase start (m/s²): 0 at the ramp ends, the ramp's peak on its plateau.
     pub fn a_start(&self) -> [f64; 7] {
-        let a1 = self.ramp_jerk[0] * self.tau[0];
-        let a2 = self.ramp_jerk[1] * self.tau[4];
-        [0.0, a1, a1, 0.0, 0.0, a2, a2]
+        std::array::from_fn(|k| self.a_start_of(k))
+    }
+
+    /// `jerk()[k]`, without the other six (`at`, every tick).
+    fn jerk_of(&self, k: usize) -> f64 {
+        let [j1, j2] = self.ramp_jerk;
+        match k {
+            0 => j1,
+            2 => -j1,
+            4 => j2,
+            6 => -j2,
+            _ => 0.0,
+        }
+    }
+
+    /// `a_start()[k]`, without the other six.
+    fn a_start_of(&self, k: usize) -> f64 {
+        match k {
+            1 | 2 => self.ramp_jerk[0] * self.tau[0],
+            5 | 6 => self.ramp_jerk[1] * self.tau[4],
+            _ => 0.0,
+        }
     }
 }
 
@@ -451,8 +469,8 @@ impl FeedLaw for Scurve7 {
             rest -= self.tau[k];
             k += 1;
         }
-        let jerk = self.jerk()[k];
-        let a0 = self.a_start()[k];
+        let jerk = self.jerk_of(k);
+        let a0 = self.a_start_of(k);
         let (ds, dv, da) = advance(rest, self.v_start[k], a0, jerk);
         Kin {
             s: self.s_start[k] + ds,
