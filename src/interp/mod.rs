@@ -145,7 +145,22 @@ impl Interpolator {
     /// Advance the path time by `dt` (s), taking blocks from `queue` as the previous ones end.
     /// Returns the time not used because the queue ran dry (0 when all of `dt` was used): the
     /// caller refills the queue and calls again with it.
-    pub fn advance(&mut self, mut dt: f64, queue: &mut VecDeque<Planned>) -> f64 {
+    #[inline]
+    pub fn advance(&mut self, dt: f64, queue: &mut VecDeque<Planned>) -> f64 {
+        // Most ticks stay inside the block in progress: that step is kept apart from the block
+        // changes (its first turn, the same test).
+        if let Some(c) = self.current.as_mut() {
+            if dt < c.duration - c.tau {
+                c.tau += dt;
+                return 0.0;
+            }
+        }
+        self.advance_across(dt, queue)
+    }
+
+    /// [`Interpolator::advance`] where a block may end within `dt`.
+    #[inline(never)]
+    fn advance_across(&mut self, mut dt: f64, queue: &mut VecDeque<Planned>) -> f64 {
         loop {
             if self.current.is_none() {
                 let Some(planned) = queue.pop_front() else {
