@@ -143,14 +143,26 @@ impl Arc {
     /// Exact derivatives w.r.t. arc length (φ = s/k): d1 = (R·e_θ + h·axis)/k,
     /// d2 = −R·e_r/k², d3 = −R·e_θ/k³, with e_r = cos φ e1 + sin φ e2, e_θ = −sin φ e1 + cos φ e2.
     pub fn eval(&self, s: f64) -> Geo {
+        self.eval_at_speed(self.speed(), s)
+    }
+
+    /// s clamped to [0, length] and the point there, with the one `hypot` they share (the
+    /// interpolator's tick).
+    pub fn eval_clamped(&self, s: f64) -> (f64, Geo) {
         let k = self.speed();
+        let s = s.clamp(0.0, self.sweep * k);
+        (s, self.eval_at_speed(k, s))
+    }
+
+    /// `eval` given ds/dφ (`speed`), which `length` multiplies by the sweep.
+    fn eval_at_speed(&self, k: f64, s: f64) -> Geo {
         let h = self.rise / self.sweep;
         let phi = (s / k).clamp(0.0, self.sweep);
         let (sn, cs) = phi.sin_cos();
         let e_r = add(scale(self.e1, cs), scale(self.e2, sn));
         let e_t = add(scale(self.e1, -sn), scale(self.e2, cs));
         let r = self.radius;
-        let p = if s >= self.length() {
+        let p = if s >= self.sweep * k {
             self.end
         } else if s <= 0.0 {
             self.start

@@ -263,8 +263,7 @@ impl Interpolator {
             return;
         }
         let k = c.planned.profile.at(c.tau);
-        let s = k.s.clamp(0.0, seg.length());
-        let g = seg.eval(s);
+        let (s, g) = seg.eval_clamped(k.s);
         let (v, a, j) = axis_motion(&g, &k);
         *out = Tick {
             t,

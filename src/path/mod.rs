@@ -174,6 +174,26 @@ impl Segment {
             }
         }
     }
+    /// s clamped to [0, length()] and the point there (the interpolator's tick): each kind's
+    /// length beside its own evaluation, where the compiler shares their square root or `hypot`.
+    #[inline]
+    pub fn eval_clamped(&self, s: f64) -> (f64, Geo) {
+        match self {
+            Segment::Line(l) => {
+                let s = s.clamp(0.0, l.length());
+                (s, l.eval(s))
+            }
+            Segment::Arc(a) => a.eval_clamped(s),
+            Segment::Chain(c) => {
+                let s = s.clamp(0.0, c.length());
+                (s, c.eval(s))
+            }
+            _ => {
+                let s = s.clamp(0.0, self.length());
+                (s, self.eval(s))
+            }
+        }
+    }
     pub fn start(&self) -> Vec3 {
         match self {
             Segment::Line(l) => l.start,
