@@ -340,10 +340,16 @@ impl Engine {
 
     /// Drives from the engine's time to `phase` periods past tick `ticks` (1: the next tick),
     /// the current command held (zero-order hold).
+    #[inline]
     fn drives_to(&mut self, phase: f64) {
-        if self.drives.is_none() {
-            return;
+        // Without the drives (the CLI's default) every tick only asks.
+        if self.drives.is_some() {
+            self.step_drives(phase);
         }
+    }
+
+    #[inline(never)]
+    fn step_drives(&mut self, phase: f64) {
         // (1 − 0)·T is T exactly: whole ticks are always the same step.
         let dt = (phase - self.phase) * self.machine.interpolation_period;
         let commands: [AxisCommand; 3] = std::array::from_fn(|i| self.command(i));
