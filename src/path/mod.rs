@@ -226,6 +226,7 @@ impl Segment {
     }
 
     /// Program line of the point at s, for segments that span several lines (chains).
+    #[inline]
     pub fn line_at(&self, s: f64) -> Option<u32> {
         match self {
             Segment::Chain(c) => Some(c.line_at(s)),
