@@ -195,6 +195,15 @@ impl Chain {
     pub fn one_source(&self) -> bool {
         self.marks.iter().all(|m| m.1 == self.marks[0].1)
     }
+    /// Its pieces' bound cells in order: `cells` where it holds them, else filled with them (a
+    /// builder adds a piece's cells where it computes them anyway, and drops the chain's where it
+    /// does not: most chains are one piece whose limits are known).
+    pub(super) fn cells<'a>(&self, cells: &'a mut Vec<[Vec3; 3]>) -> &'a [[Vec3; 3]] {
+        if cells.is_empty() {
+            self.pieces.iter().for_each(|p| p.curve.cells(|c| cells.push(c)));
+        }
+        cells
+    }
     /// Program line of the geometry at s (see `marks`).
     pub fn line_at(&self, s: f64) -> u32 {
         let k = self.marks.partition_point(|&(x, _)| x <= s).saturating_sub(1);

@@ -21,7 +21,7 @@
 
 use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::fit::VertexJet;
-use super::hermite::{Jet, BOUND_PIECES};
+use super::hermite::Jet;
 use super::junction::{corner_ceiling, transition};
 use super::micro::Tiny;
 use super::source_map;
@@ -177,7 +177,8 @@ pub struct SmoothBuilder {
     pub(super) run_jet: VertexJet,
     /// Stage 2: the span waiting for its junction with the next.
     held: Option<Span>,
-    /// Stage 3: the chain being filled, its pieces' bound cells, feed and speed class.
+    /// Stage 3: the chain being filled, its pieces' bound cells (all, or none: `Chain::cells`),
+    /// feed and speed class.
     chain: Chain,
     cells: Vec<[Vec3; 3]>,
     chain_feed: f64,
@@ -355,9 +356,12 @@ impl SmoothBuilder {
         out: &mut Vec<PathBlock>,
     ) {
         if piece.length() > MIN_LENGTH {
-            let mut cells = Vec::with_capacity(BOUND_PIECES);
-            piece.curve.cells(|c| cells.push(c));
             let straight = matches!(piece.curve, Curve::Line(_));
+            // Its cells where its class needs them; else a chain of several takes them as it closes.
+            let mut cells = Vec::new();
+            if straight || known.is_none() {
+                piece.curve.cells(|c| cells.push(c));
+            }
             let sigma = piece.curve.speed_bound().max(1.0);
             // The speed class is the piece's own v_max; its ramps are within its own limits.
             let own = if straight {
@@ -411,7 +415,11 @@ impl SmoothBuilder {
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
-            self.cells.extend(cells);
+            if cells.is_empty() || !self.chain.is_empty() && self.cells.is_empty() {
+                self.cells.clear();
+            } else {
+                self.cells.extend(cells);
+            }
             self.chain.push_marked(piece, marks);
         }
         if stop {
@@ -439,7 +447,7 @@ impl SmoothBuilder {
                 let v_cap = self.chain_feed / self.chain_sigma;
                 let own = match self.chain_single.take() {
                     Some(l) if chain.pieces.len() == 1 => l,
-                    _ => piece_limits(&self.cells, v_cap, m),
+                    _ => piece_limits(chain.cells(&mut self.cells), v_cap, m),
                 };
                 (Segment::Chain(chain), own.limits, own.bands, self.chain_sigma)
             }
