@@ -255,13 +255,22 @@ pub(super) struct Own {
 
 impl Own {
     pub(super) fn of(h: &Hermite, feed: f64, m: &Machine) -> Own {
-        let cells = h.cell_array();
+        let mut cells = [[[0.0; 3]; 3]; BOUND_PIECES];
+        h.cells_into(&mut cells);
         let frame = piece_frame(&cells, feed / h.speed_bound().max(1.0), m);
         Own {
             cells,
             frame,
             top: None,
         }
+    }
+
+    /// `Own::of(h, feed, m).ceiling()` without the cells kept: the frame takes only their
+    /// largest bounds (`derivative_bounds`, the same maxima in the same order).
+    pub(super) fn ceiling_of(h: &Hermite, feed: f64, m: &Machine) -> f64 {
+        let b = h.derivative_bounds();
+        let v_cap = feed / h.speed_bound().max(1.0);
+        Frame::of_bounds(&b, smallest_radius(&b), v_cap, m).ceiling()
     }
 
     /// Its limits and bands (`piece_limits`), from its top speed where `speed` solved it.

@@ -228,7 +228,7 @@ mod tests {
                 Hermite::new(a, b, 2.0 * share * d)
             };
             let (ins, outs) = (std::slice::from_ref(&before), std::slice::from_ref(&after));
-            let admits = |d: f64| within_tolerance(&curve(d), ins, outs).is_some();
+            let admits = |d: f64| within_tolerance(&curve(d), ins, outs, &mut [0.0; TRANSITION_SAMPLES + 1]);
             let (mut lo, mut hi) = (tol * 1e-3, 0.5 * length.min(after.source.length()));
             if !admits(lo) || admits(hi) {
                 continue;

@@ -238,15 +238,14 @@ impl Hermite {
         }
     }
 
-    /// `cells` as one array (no list to grow: a junction's search bounds many transitions).
-    pub fn cell_array(&self) -> [[Vec3; 3]; BOUND_PIECES] {
-        let mut out = [[[0.0; 3]; 3]; BOUND_PIECES];
+    /// `cells` into one array (no list to grow: a junction's search bounds many transitions),
+    /// the caller's: a returned array was copied out.
+    pub fn cells_into(&self, out: &mut [[Vec3; 3]; BOUND_PIECES]) {
         let mut k = 0;
         self.cells(|c| {
             out[k] = c;
             k += 1;
         });
-        out
     }
 
     /// Guaranteed bound of the parameter speed |p'| over [0, λ]: the Taylor bound, as above, of

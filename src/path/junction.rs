@@ -93,7 +93,7 @@ pub(super) fn corner_ceiling(held: &Span, next: &Span, shared: bool, m: &Machine
         return 0.0;
     }
     let feed = held.last.feed.min(next.first.feed);
-    Own::of(&cut_curve(held, next, d, 1.0), feed, m).ceiling()
+    Own::ceiling_of(&cut_curve(held, next, d, 1.0), feed, m)
 }
 
 /// The corner between `held` and `next`: how much it turns, |t_out − t_in|, and its reach, the
@@ -327,13 +327,15 @@ impl Search<'_> {
         Some((d, cut_curve(self.held, self.next, d, share)))
     }
 
-    /// The curve `h` of cut `d` within the tolerance: with its samples' `Leads`.
-    fn within(&self, d: f64, h: &Hermite) -> Option<Leads> {
+    /// Whether the curve `h` of cut `d` is within the tolerance, its samples' `Leads` written to
+    /// `leads` (in place: a returned array was copied on each way out).
+    fn within(&self, d: f64, h: &Hermite, leads: &mut Leads) -> bool {
         if self.lines {
-            return Some(None);
+            *leads = None;
+            return true;
         }
         let (before, after) = (self.held.moves_at_end(d), self.next.moves_at_start(d));
-        within_tolerance(h, before, after).map(Some)
+        within_tolerance(h, before, after, leads.insert([0.0; TRANSITION_SAMPLES + 1]))
     }
 
     /// The speed cut `d` is costed at: its own top speed `v_max`, no faster than the slower
@@ -372,8 +374,7 @@ impl Search<'_> {
             return false;
         }
         let h = cut_curve(self.held, self.next, d, share);
-        let own = Own::of(&h, self.feed, self.m);
-        let v_ceiling = self.speed(d, own.ceiling());
+        let v_ceiling = self.speed(d, Own::ceiling_of(&h, self.feed, self.m));
         local_cost(d, h.length(), v_ceiling, self.sides) < best.cost - SAVING
     }
 
@@ -433,12 +434,13 @@ impl Search<'_> {
         }
         let mut best = None;
         let mut stop_tries = 0;
+        let mut leads = None;
         for _ in 0..MAX_SHRINKS {
             let (d, h) = self.at(k, first, share)?;
-            let Some(leads) = self.within(d, &h) else {
+            if !self.within(d, &h, &mut leads) {
                 k += 1;
                 continue;
-            };
+            }
             // A shorter cut may beat a stop where the longest does not (its time grows as √d, a
             // jerk-limited stop's as ∛d): a larger tolerance, which admits it too, must not stop
             // where a smaller one runs through.
@@ -458,8 +460,9 @@ impl Search<'_> {
         }
         let mut best = best?;
         let (admitted, longest) = (best.k, best.d);
-        // The cut at index k if it is within the tolerance and cheaper than `best` by `SAVING`.
-        let try_at = |k: i32, best: &Found| {
+        // The cut at index k, into `best`, if it is within the tolerance and cheaper than `best`
+        // by `SAVING` (in place: a returned cut was copied on each way out).
+        let try_at = |k: i32, best: &mut Found| {
             let (d, h) = self.at(k, first, share)?;
             let mut own = Own::of(&h, self.feed, m);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
@@ -480,20 +483,17 @@ impl Search<'_> {
             let known = Some((v_ceiling, at_ceiling));
             let mut shorter = self.found(k, d, h, (v_max, own), share, known);
             (shorter.cost < best.cost - SAVING).then_some(())?;
-            shorter.leads = self.within(d, &shorter.h)?;
-            Some(shorter)
+            self.within(d, &shorter.h, &mut shorter.leads).then_some(())?;
+            *best = shorter;
+            Some(())
         };
         // Down by halves while cheaper.
-        while let Some(shorter) = try_at(best.k + OCTAVE, &best) {
-            best = shorter;
-        }
+        while try_at(best.k + OCTAVE, &mut best).is_some() {}
         // Then a quarter and an eighth of the octave about the best.
         for step in [OCTAVE / 2, OCTAVE / 4] {
             let around = [best.k - step, best.k + step];
             for k in around.into_iter().filter(|&k| k >= admitted) {
-                if let Some(b) = try_at(k, &best) {
-                    best = b;
-                }
+                try_at(k, &mut best);
             }
         }
         Some((best, longest))
@@ -518,10 +518,14 @@ const STOP_TRIES: u32 = 4;
 
 /// Every point of `h` within the tolerance of one of the programmed moves it replaces (`before`
 /// and `after` the corner, in path order): each of its samples keeps the half-steps about it
-/// within the tolerance of one (cover.rs). Its samples' `Leads`, or None where it is not.
-pub(super) fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> Leads {
+/// within the tolerance of one (cover.rs). Its samples' distances (`Leads`) go to `leads`.
+pub(super) fn within_tolerance(
+    h: &Hermite,
+    before: &[Move],
+    after: &[Move],
+    leads: &mut [f64; TRANSITION_SAMPLES + 1],
+) -> bool {
     let g = Guards::of(h);
-    let mut leads = [0.0; TRANSITION_SAMPLES + 1];
     // From the middle outwards: a cut too long fails first near the apex, where the transition
     // is farthest from both pieces (the cut search tries several before one keeps it).
     let half = TRANSITION_SAMPLES / 2;
@@ -541,5 +545,5 @@ pub(super) fn within_tolerance(h: &Hermite, before: &[Move], after: &[Move]) -> 
                 after.iter().chain(before.iter().rev()).skip(1).any(near)
             }
     });
-    all.then_some(leads)
+    all
 }
