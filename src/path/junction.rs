@@ -191,8 +191,12 @@ pub(super) fn transition(
         lines,
         m,
     };
-    let (mut best, mut longest): (Option<Found>, f64) = (None, f64::INFINITY);
+    // The best cut so far, `cuts[at]`, and the slot the next share's search writes into: they
+    // swap roles where that one is cheaper (a cut is not copied between them).
+    let mut cuts: [Option<Found>; 2] = [None, None];
+    let (mut at, mut longest) = (0, f64::INFINITY);
     for (k, &share) in LAMBDA_SHARES.iter().enumerate() {
+        let best = &cuts[at];
         // A transition at the feed or at its slower neighbour's speed keeps λ = 2d: a shorter
         // one runs no faster there. The time falls with the share down to its best, then rises:
         // a share that did not improve ends the search. Between curves, each try costs the
@@ -221,10 +225,14 @@ pub(super) fn transition(
         {
             break;
         }
-        if let Some((found, admitted)) = search.cuts(start, share) {
+        if let Some(admitted) = search.cuts(start, share, &mut cuts[1 - at]) {
             longest = admitted;
-            if best.as_ref().is_none_or(|b| found.cost < b.cost - SAVING) {
-                best = Some(found);
+            let best = &cuts[at];
+            if cuts[1 - at]
+                .as_ref()
+                .is_some_and(|found| best.as_ref().is_none_or(|b| found.cost < b.cost - SAVING))
+            {
+                at = 1 - at;
             }
         }
     }
@@ -232,7 +240,7 @@ pub(super) fn transition(
     // with the spans beside the corner running on at their own speeds and with their far ends
     // counted too (a short span's ramps to and from the corner share its length: where the
     // first says stop, the second often does not).
-    let best = best?;
+    let best = cuts[at].as_ref()?;
     if local_cost(0.0, 0.0, 0.0, &sides) < best.cost - SAVING {
         for (k, side) in sides.iter_mut().enumerate() {
             side.far = far_of(k, side);
@@ -412,9 +420,9 @@ impl Search<'_> {
     /// less (a longer transition is faster through the corner but replaces more of a faster
     /// neighbour), then a quarter and an eighth of the octave about the best. The grid hangs
     /// from the junction's reach, not from the tolerance: a larger tolerance admits every cut a
-    /// smaller one did and compares them too. None: a stop costs less; else the cut chosen and
-    /// the longest admitted.
-    fn cuts(&self, start: f64, share: f64) -> Option<(Found, f64)> {
+    /// smaller one did and compares them too. None: a stop costs less; else the longest cut
+    /// admitted, the cut chosen in `slot` (in place: a returned cut was copied on each way out).
+    fn cuts(&self, start: f64, share: f64, slot: &mut Option<Found>) -> Option<f64> {
         let m = self.m;
         // The first grid cut at or below `start` (the rounding of the log checked).
         let mut k = if start >= self.reach {
@@ -432,7 +440,7 @@ impl Search<'_> {
         if self.reach * GRID.powi(k) < start {
             k -= 1;
         }
-        let mut best = None;
+        *slot = None;
         let mut stop_tries = 0;
         let mut leads = None;
         for _ in 0..MAX_SHRINKS {
@@ -448,7 +456,7 @@ impl Search<'_> {
                 Some(speed) => {
                     let mut found = self.found(k, d, h, speed, share, None);
                     found.leads = leads;
-                    best = Some(found);
+                    *slot = Some(found);
                     break;
                 }
                 None if stop_tries == STOP_TRIES => return None,
@@ -458,7 +466,7 @@ impl Search<'_> {
                 }
             }
         }
-        let mut best = best?;
+        let best = slot.as_mut()?;
         let (admitted, longest) = (best.k, best.d);
         // The cut at index k, into `best`, if it is within the tolerance and cheaper than `best`
         // by `SAVING` (in place: a returned cut was copied on each way out).
@@ -488,15 +496,15 @@ impl Search<'_> {
             Some(())
         };
         // Down by halves while cheaper.
-        while try_at(best.k + OCTAVE, &mut best).is_some() {}
+        while try_at(best.k + OCTAVE, best).is_some() {}
         // Then a quarter and an eighth of the octave about the best.
         for step in [OCTAVE / 2, OCTAVE / 4] {
             let around = [best.k - step, best.k + step];
             for k in around.into_iter().filter(|&k| k >= admitted) {
-                try_at(k, &mut best);
+                try_at(k, best);
             }
         }
-        Some((best, longest))
+        Some(longest)
     }
 }
 
