@@ -329,8 +329,10 @@ fn ramp_pieces(b: &Banded, kept: &[&Rise], from: f64, hi: f64, take: impl FnMut(
 /// added when it is longer than 0, in that order; and the rise's time as `rise_time_distance`
 /// sums it (every phase, in order).
 fn duration(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f64) -> (f64, f64) {
-    let ramp = |from: f64| {
-        let (mut taus, mut n, mut s, mut t) = ([0.0; 4 * (MAX_BANDS + 1)], 0, 0.0, 0.0);
+    // Each ramp's phases into the caller's array (a returned array was copied out, and again
+    // where the drop is the rise).
+    let ramp = |from: f64, taus: &mut [f64; 4 * (MAX_BANDS + 1)]| {
+        let (mut n, mut s, mut t) = (0, 0.0, 0.0);
         ramp_pieces(b, kept, from, v_c, |p| {
             let (tau, _, ds) = p.run();
             if n < taus.len() {
@@ -340,13 +342,17 @@ fn duration(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end:
             t += tau;
             s += ds;
         });
-        (taus, n, s, t)
+        (n, s, t)
     };
-    let (up, n_up, s_up, t_up) = ramp(v_in);
-    let (down, n_down, s_down, _) = if v_end == v_in {
-        (up, n_up, s_up, t_up)
+    let mut up = [0.0; 4 * (MAX_BANDS + 1)];
+    let (n_up, s_up, t_up) = ramp(v_in, &mut up);
+    let mut own_down;
+    let (down, n_down, s_down) = if v_end == v_in {
+        (&up, n_up, s_up)
     } else {
-        ramp(v_end)
+        own_down = [0.0; 4 * (MAX_BANDS + 1)];
+        let (n, s, _) = ramp(v_end, &mut own_down);
+        (&own_down, n, s)
     };
     let ramps = s_up + s_down;
     let cruise = if v_c > 0.0 {
@@ -377,13 +383,14 @@ fn build(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f6
         (phases, s)
     };
     let (up, s_up) = ramp(v_in);
-    // Equal ends: the drop is the rise (built once).
-    let (mut down, s_down) = if v_end == v_in {
-        (up.clone(), s_up)
+    // Equal ends: the drop is the rise (built once, not copied).
+    let own_down;
+    let (down, s_down) = if v_end == v_in {
+        (&up, s_up)
     } else {
-        ramp(v_end)
+        own_down = ramp(v_end);
+        (&own_down.0, own_down.1)
     };
-    down.reverse();
     let ramps = s_up + s_down;
     let cruise = if v_c > 0.0 {
         ((length - ramps) / v_c).max(0.0)
@@ -416,7 +423,7 @@ fn build(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f6
     (v, a) = (v_c, 0.0);
     push(cruise, 0.0, &mut v, &mut a);
     (v, a) = (v_c, 0.0);
-    for &(tau, j) in &down {
+    for &(tau, j) in down.iter().rev() {
         push(tau, j, &mut v, &mut a);
     }
     Scurve7Banded {
