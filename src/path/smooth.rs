@@ -432,8 +432,8 @@ impl SmoothBuilder {
             return;
         }
         let chain = std::mem::take(&mut self.chain);
-        let (first, line) = (chain.pieces[0], chain.line_at(0.0));
-        let (segment, limits, bands, sigma) = match (chain.pieces.len(), first.curve) {
+        let (first, line) = (&chain.pieces[0], chain.line_at(0.0));
+        let (segment, limits, bands, sigma) = match (chain.pieces.len(), &first.curve) {
             // A plain line block reports one program line (a line of several moves stays a chain).
             (1, Curve::Line(_)) if chain.one_source() => {
                 let line = Line {

@@ -56,7 +56,7 @@ impl End {
 
 /// The side of a junction that `span` is (its limits computed once, kept on the span).
 pub(super) fn side(span: &mut Span, feed: f64, m: &Machine) -> Side {
-    let piece = span.piece;
+    let piece = &span.piece;
     let sigma = piece.curve.speed_bound().max(1.0);
     let (v, top, bands) = match piece.curve {
         Curve::Line(line) => {
