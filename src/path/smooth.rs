@@ -9,15 +9,13 @@
 //! 2. Junctions (junction.rs). Where two spans do not already join with equal first and second
 //!    derivatives, both are cut back by d and a quintic Hermite transition (hermite.rs; eq.
 //!    45–52 for two lines) joins them: d from the apex distance at the tolerance, at most half
-//!    of the programmed line at each end, shrunk until the transition stays within the tolerance
-//!    of the programmed geometry (closed form between lines; a sampled check with a guaranteed
-//!    guard between samples otherwise), and a stop instead where the transition would be
-//!    slower. Only exact stop (G61), a reversal beyond `REVERSAL_COS` and the program's stops
-//!    stop the path. A span's junction waits for the span after it (one more span held): the
-//!    transition at its far end, or a stop, bounds how fast it may leave the corner before.
-//! 3. Chains. Consecutive pieces of similar speed class join one chain (chain.rs); its limits
-//!    come from guaranteed bounds of its pieces' derivatives (`curve_limits`), so every axis keeps
-//!    its velocity, acceleration and jerk limit for any speed change the feed law makes inside.
+//!    of the programmed line at each end, shrunk until the transition keeps the tolerance (closed
+//!    form between lines, else sampled with a guaranteed guard), a stop where that is faster.
+//!    Only G61, a reversal beyond `REVERSAL_COS` and the program's stops stop the path. A span's
+//!    junction waits for the span after it: the transition at its far end, or a stop, bounds how
+//!    fast it may leave the corner before.
+//! 3. Chains. Consecutive pieces of similar speed class join one chain (chain.rs), whose limits
+//!    bound its pieces' derivatives (`curve_limits`): every axis keeps its limits at any speed.
 
 use super::chain::{piece_limits, Chain, Curve, CurveLimits, Piece};
 use super::fit::VertexJet;
@@ -357,7 +355,8 @@ impl SmoothBuilder {
     ) {
         if piece.length() > MIN_LENGTH {
             let straight = matches!(piece.curve, Curve::Line(_));
-            // Its cells where its class needs them; else a chain of several takes them as it closes.
+            // Its cells where its class needs them: the chain holds all its pieces' or none, and
+            // then takes them as it closes (`Chain::cells`).
             let mut cells = Vec::new();
             if straight || known.is_none() {
                 piece.curve.cells(|c| cells.push(c));
