@@ -60,34 +60,42 @@ impl Budget<'_> {
         (j_c >= self.j_min * slack).then_some((a_c, j_c))
     }
 
-    /// At each speed v of `v`: the largest tangential acceleration the centripetal terms leave
-    /// (at most `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk left with no tangential
-    /// acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|. All speeds in one pass
-    /// over the cells (the inner loop over speeds runs in SIMD lanes; each value is the scalar one).
+    /// At each speed v of `v` (each ≥ 0): the largest tangential acceleration the centripetal
+    /// terms leave (at most `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk left with no
+    /// tangential acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|. All speeds in
+    /// one pass over the cells (the inner loop over speeds runs in SIMD lanes; each value is the
+    /// scalar one), each group of speeds skipping the cells that cannot lower it (`lower_where_may`).
     pub fn free_at<const N: usize>(&self, v: &[f64; N]) -> ([f64; N], [f64; N]) {
         let (mut a_c, mut j_c) = ([self.a_cap; N], [self.j_free; N]);
+        let (mut a_most, mut j_most) = ([self.a_cap; N], [self.j_free; N]);
+        let v_high = group_max(v, f64::NEG_INFINITY);
         self.each_moving(|ax, [d1, d2, d3]| {
-            for k in 0..N {
-                let v = v[k];
-                lower(&mut a_c[k], (ax.max_acceleration - d2 * v * v) / d1);
-                lower(&mut j_c[k], (ax.max_jerk - d3 * v * v * v) / d1);
-            }
+            // Each term falls as v rises (every rounded step is monotone): its bound over a group
+            // is its value at the group's highest speed.
+            let a = |v: f64| (ax.max_acceleration - d2 * v * v) / d1;
+            let j = |v: f64| (ax.max_jerk - d3 * v * v * v) / d1;
+            lower_where_may(&mut a_c, &mut a_most, |g| a(v_high[g]), |k| a(v[k]));
+            lower_where_may(&mut j_c, &mut j_most, |g| j(v_high[g]), |k| j(v[k]));
         });
         (a_c, j_c)
     }
 
-    /// At each speed v of `v`, the tangential jerk left with tangential acceleration up to a
-    /// (`a`, at most `j_free`): J_c = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i| over the cells.
+    /// At each speed v of `v` (each ≥ 0), the tangential jerk left with tangential acceleration
+    /// up to a (`a`, at most `j_free`): J_c = min_i (J_i − |d3_i|·v³ − 3|d2_i|·v·a)/|d1_i| over
+    /// the cells.
     pub fn jerk_with<const N: usize>(&self, v: &[f64; N], a: &[f64; N]) -> [f64; N] {
-        let mut j_c = [self.j_free; N];
+        let (mut j_c, mut most) = ([self.j_free; N], [self.j_free; N]);
+        let (v_high, a_high) = (group_max(v, f64::NEG_INFINITY), group_max(a, 0.0));
         self.each_moving(|ax, [d1, d2, d3]| {
-            for k in 0..N {
-                let (v, a) = (v[k], a[k]);
-                lower(
-                    &mut j_c[k],
-                    (ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a) / d1,
-                );
-            }
+            let j = |v: f64, a: f64| (ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a) / d1;
+            // Each rounded step is monotone: at most the group's highest v and a (a ≥ 0, so the
+            // product with 3·d2·v ≥ 0 only grows), the term is no smaller than at those.
+            lower_where_may(
+                &mut j_c,
+                &mut most,
+                |g| j(v_high[g], a_high[g]),
+                |k| j(v[k], a[k]),
+            );
         });
         j_c
     }
@@ -184,6 +192,59 @@ impl Budget<'_> {
         }
         (0.0, self.at(0.0).unwrap_or((self.a_min, self.j_min)))
     }
+}
+
+/// Speeds of the loops above taken together: a group's lanes are lowered by a cell only where a
+/// bound of its terms there from below does not exceed all of them.
+const GROUP: usize = 16;
+
+/// At each whole group's first lane, the largest of its lanes of `x` and `floor`, NaN lanes
+/// left out (their terms are NaN, which lowers nothing).
+#[inline(always)]
+fn group_max<const N: usize>(x: &[f64; N], floor: f64) -> [f64; N] {
+    let mut high = [floor; N];
+    for g in (0..N / GROUP).map(|g| g * GROUP) {
+        high[g] = x[g..g + GROUP].iter().fold(floor, |m, &y| m.max(y));
+    }
+    high
+}
+
+/// The largest lane of a group of minima, halved pairwise so that it runs in SIMD lanes (a
+/// compare and select: its lanes are all NaN or none, as a NaN start stays and `lower` takes no
+/// NaN).
+#[inline(always)]
+fn largest(x: &[f64]) -> f64 {
+    let mut w = [0.0; GROUP];
+    w.copy_from_slice(x);
+    let mut n = GROUP;
+    while n > 1 {
+        n /= 2;
+        for i in 0..n {
+            w[i] = if w[i] > w[i + n] { w[i] } else { w[i + n] };
+        }
+    }
+    w[0]
+}
+
+/// `lower` of each lane k of `acc` by `term(k)`, where `most` holds at each group's first lane
+/// at least the largest of its lanes: a whole group (from lane g) is skipped where `bound(g)`,
+/// no larger than any of its terms, exceeds that (none of them would lower a lane: the same
+/// values, as lanes only fall). Lanes past the last whole group are lowered one by one.
+#[inline(always)]
+fn lower_where_may<const N: usize>(
+    acc: &mut [f64; N],
+    most: &mut [f64; N],
+    bound: impl Fn(usize) -> f64,
+    term: impl Fn(usize) -> f64,
+) {
+    for g in (0..N / GROUP).map(|g| g * GROUP) {
+        if bound(g) > most[g] {
+            continue;
+        }
+        (g..g + GROUP).for_each(|k| lower(&mut acc[k], term(k)));
+        most[g] = largest(&acc[g..g + GROUP]);
+    }
+    (N / GROUP * GROUP..N).for_each(|k| lower(&mut acc[k], term(k)));
 }
 
 /// acc = min(acc, x) for a finite acc, as a compare and select (`f64::min`'s NaN rule keeps
