@@ -372,8 +372,11 @@ pub fn curve_top_speed(frame: &Frame, cells: &[[Vec3; 3]], machine: &Machine) ->
 fn band_pairs<const N: usize>(budget: &Budget, v: &[f64; N]) -> ([f64; N], [f64; N]) {
     let (a_free, j0) = budget.free_at(v);
     let j_share = j0.map(|j| BAND_JERK_SHARE * j);
-    let a_jerk = budget.acceleration_leaving(v, &j_share);
     let a_reach: [f64; N] = std::array::from_fn(|k| (2.0 * v[k] * j0[k].max(0.0)).sqrt());
+    // a_jerk is taken only within a_reach: from just above it (the next float, or ∞ where it is
+    // NaN), the minimum is the same where a_jerk ≤ a_reach and stays above a_reach where not.
+    let above = a_reach.map(|a| if a.is_nan() { f64::INFINITY } else { a.next_up() });
+    let a_jerk = budget.acceleration_leaving(v, &j_share, &above);
     // Reserving for a_jerk leaves exactly j_share (its cell binds); for less, what is left.
     let reserved: [f64; N] = std::array::from_fn(|k| a_jerk[k].min(a_reach[k]));
     let left = budget.jerk_with(v, &reserved);

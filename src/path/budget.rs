@@ -100,17 +100,39 @@ impl Budget<'_> {
         j_c
     }
 
-    /// At each speed v of `v`, the largest tangential acceleration that leaves the jerk at least
-    /// j (`j`): min_i (J_i − |d3_i|·v³ − |d1_i|·j)/(3|d2_i|·v) over the cells, from the jerk
-    /// limits alone (not capped by `a_cap`, which comes from the acceleration limits).
-    pub fn acceleration_leaving<const N: usize>(&self, v: &[f64; N], j: &[f64; N]) -> [f64; N] {
-        let mut a_c = [f64::INFINITY; N];
+    /// At each speed v of `v` (each ≥ 0), the largest tangential acceleration that leaves the
+    /// jerk at least j (`j`): min_i (J_i − |d3_i|·v³ − |d1_i|·j)/(3|d2_i|·v) over the cells, from
+    /// the jerk limits alone (not capped by `a_cap`, which comes from the acceleration limits);
+    /// the lane of `above` where that is smaller (the same minimum where it is not).
+    pub fn acceleration_leaving<const N: usize>(
+        &self,
+        v: &[f64; N],
+        j: &[f64; N],
+        above: &[f64; N],
+    ) -> [f64; N] {
+        let (mut a_c, mut most) = (*above, group_max(above, f64::NEG_INFINITY));
+        let (v_high, j_high) = (group_max(v, f64::NEG_INFINITY), group_max(j, f64::NEG_INFINITY));
         self.each_moving(|ax, [d1, d2, d3]| {
-            for k in 0..N {
+            // At the group's highest v and j the numerator is no larger and the denominator no
+            // smaller than at any of its speeds: where that numerator is ≥ 0, so is the bound.
+            let bound = |g: usize| {
+                let (v, j) = (v_high[g], j_high[g]);
+                let left = ax.max_jerk - d3 * v * v * v - d1 * j;
+                if left >= 0.0 {
+                    left / (3.0 * d2 * v)
+                } else {
+                    f64::NEG_INFINITY
+                }
+            };
+            lower_where_may(&mut a_c, &mut most, bound, |k| {
                 let (v, j) = (v[k], j[k]);
                 let a = (ax.max_jerk - d3 * v * v * v - d1 * j) / (3.0 * d2 * v);
-                lower(&mut a_c[k], if d2 * v > NEGLIGIBLE { a } else { f64::INFINITY });
-            }
+                if d2 * v > NEGLIGIBLE {
+                    a
+                } else {
+                    f64::INFINITY
+                }
+            });
         });
         a_c
     }
