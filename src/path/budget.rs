@@ -43,8 +43,7 @@ impl Budget<'_> {
         // budgets as computed): a relative slack keeps rounding from punching holes in the set
         // of speeds that have one (where A_c is the jerk term, J_c = j_min exactly). A_c's share
         // is checked first: where it fails, J_c is not worked out.
-        let slack = 1.0 - SHARE_SLACK;
-        let a_kept = a_c >= self.a_min * slack;
+        let a_kept = a_c >= self.a_share();
         if !a_kept {
             return None;
         }
@@ -57,7 +56,12 @@ impl Budget<'_> {
                 }
             }
         }
-        (j_c >= self.j_min * slack).then_some((a_c, j_c))
+        (j_c >= self.j_min * (1.0 - SHARE_SLACK)).then_some((a_c, j_c))
+    }
+
+    /// A_c's share as `at` checks it: `a_min` less the slack `SHARE_SLACK`.
+    fn a_share(&self) -> f64 {
+        self.a_min * (1.0 - SHARE_SLACK)
     }
 
     /// At each speed v of `v` (each ≥ 0): the largest tangential acceleration the centripetal
@@ -158,8 +162,8 @@ impl Budget<'_> {
     /// - axis not moving: d2·v² ≤ A and d3·v³ ≤ J.
     pub fn max_speed(&self, v0: f64) -> (f64, (f64, f64)) {
         // The share of A_c as `at` checks it (J_c's follows from A_c's jerk term).
-        let a_min = self.a_min * (1.0 - SHARE_SLACK);
-        let mut v = self.start(v0, a_min);
+        let a_min = self.a_share();
+        let mut v = self.start(v0);
         for cell in self.cells {
             for (i, ax) in self.machine.axes.iter().enumerate() {
                 let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
@@ -186,13 +190,13 @@ impl Budget<'_> {
     /// rounding (as the top speed in arc.rs is): each bound's left side grows with v, so none
     /// binds there, and only `at` is checked (the same speed and budget, without the solves).
     pub fn max_speed_below_end(&self, v0: f64) -> (f64, (f64, f64)) {
-        self.settle(self.start(v0, self.a_min * (1.0 - SHARE_SLACK)).max(0.0))
+        self.settle(self.start(v0).max(0.0))
     }
 
     /// Where a search for the largest speed starts: `v0`, or 0 where the cap leaves A_c less
-    /// than its share `a_min` (as `at` checks it) at every speed.
-    fn start(&self, v0: f64, a_min: f64) -> f64 {
-        if self.a_cap >= a_min {
+    /// than its share (`a_share`) at every speed.
+    fn start(&self, v0: f64) -> f64 {
+        if self.a_cap >= self.a_share() {
             v0
         } else {
             0.0
