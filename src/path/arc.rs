@@ -1,7 +1,7 @@
 //! Path limits of arcs and other curves: seed 004 §2.3–2.4 (eq. 17–24) with the chord-error
 //! limit of seed 003.
 
-use super::budget::{max_bounds, Budget};
+use super::budget::{lower, max_bounds, raise, Budget};
 use super::tolerance::{CUBE_MARGIN, NEGLIGIBLE};
 use crate::config::Machine;
 use crate::feed::bands::{Band, Bands, MAX_BANDS};
@@ -24,23 +24,24 @@ pub fn constant_speed_limit(bounds: &[Vec3; 3], machine: &Machine) -> f64 {
     let (mut d2n, mut d3n, mut x3): (f64, f64, f64) = (0.0, 0.0, f64::INFINITY);
     for (i, ax) in machine.axes.iter().enumerate() {
         let [d1, d2, d3] = [bounds[0][i], bounds[1][i], bounds[2][i]];
+        // Compare and select (`lower`, `raise`): v, x3, d2n and d3n are never NaN.
         if d1 > NEGLIGIBLE {
-            v = v.min(ax.max_velocity / d1);
+            lower(&mut v, ax.max_velocity / d1);
         }
         if d2 > NEGLIGIBLE {
-            v = v.min((ax.max_acceleration / d2).sqrt());
+            lower(&mut v, (ax.max_acceleration / d2).sqrt());
         }
         if d3 > NEGLIGIBLE {
-            x3 = x3.min(ax.max_jerk / d3);
+            lower(&mut x3, ax.max_jerk / d3);
         }
-        d2n = d2n.max(d2);
-        d3n = d3n.max(d3);
+        raise(&mut d2n, d2);
+        raise(&mut d3n, d3);
     }
     if let (Some(a), true) = (machine.max_path_acceleration, d2n > NEGLIGIBLE) {
-        v = v.min((a / d2n).sqrt());
+        lower(&mut v, (a / d2n).sqrt());
     }
     if let (Some(j), true) = (machine.max_path_jerk, d3n > NEGLIGIBLE) {
-        x3 = x3.min(j / d3n);
+        lower(&mut x3, j / d3n);
     }
     min_cbrt(v, x3)
 }

@@ -24,15 +24,19 @@ impl Budget<'_> {
     /// p'' and p''' at the same points, so the centripetal and tangential parts add per cell.
     pub fn at(&self, v: f64) -> Option<(f64, f64)> {
         let axes = &self.machine.axes;
+        // A_c and J_c start at a_cap and j_free, never NaN: `lower` takes what `f64::min` took.
         let mut a_c = self.a_cap;
         for cell in self.cells {
             for (i, ax) in axes.iter().enumerate() {
                 let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
                 if d1 > NEGLIGIBLE {
-                    a_c = a_c.min((ax.max_acceleration - d2 * v * v) / d1);
+                    lower(&mut a_c, (ax.max_acceleration - d2 * v * v) / d1);
                     // Leave the jerk its share: d3·v³ + 3·d2·v·a + d1·j_min ≤ J_i.
                     if d2 * v > NEGLIGIBLE {
-                        a_c = a_c.min((ax.max_jerk - d3 * v * v * v - d1 * self.j_min) / (3.0 * d2 * v));
+                        lower(
+                            &mut a_c,
+                            (ax.max_jerk - d3 * v * v * v - d1 * self.j_min) / (3.0 * d2 * v),
+                        );
                     }
                 } else if d2 * v * v > ax.max_acceleration || d3 * v * v * v > ax.max_jerk {
                     return None;
@@ -52,7 +56,7 @@ impl Budget<'_> {
             for (i, ax) in axes.iter().enumerate() {
                 let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
                 if d1 > NEGLIGIBLE {
-                    j_c = j_c.min((ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a_c) / d1);
+                    lower(&mut j_c, (ax.max_jerk - d3 * v * v * v - 3.0 * d2 * v * a_c) / d1);
                 }
             }
         }
@@ -276,8 +280,15 @@ fn lower_where_may<const N: usize>(
 /// acc = min(acc, x) for a finite acc, as a compare and select (`f64::min`'s NaN rule keeps
 /// the loops above from running in SIMD lanes; a NaN x leaves acc either way).
 #[inline(always)]
-fn lower(acc: &mut f64, x: f64) {
+pub(super) fn lower(acc: &mut f64, x: f64) {
     *acc = if x < *acc { x } else { *acc };
+}
+
+/// acc = max(acc, x) for a finite acc, as a compare and select (`lower`'s NaN rule: a NaN x
+/// leaves acc, as `f64::max` does).
+#[inline(always)]
+pub(super) fn raise(acc: &mut f64, x: f64) {
+    *acc = if x > *acc { x } else { *acc };
 }
 
 /// Largest v ≥ 0 with d·v^n ≤ left (∞ if d is 0, 0 if nothing is left).
@@ -310,13 +321,19 @@ fn jerk_speed(d3: f64, c: f64, left: f64) -> f64 {
 pub fn max_bounds(cells: &[[Vec3; 3]]) -> [Vec3; 3] {
     let mut b = [[0.0f64; 3]; 3];
     for cell in cells {
-        for (acc, new) in b.iter_mut().zip(cell) {
-            for i in 0..3 {
-                acc[i] = acc[i].max(new[i]);
-            }
-        }
+        raise_bounds(&mut b, cell);
     }
     b
+}
+
+/// Each bound of `b` raised to the cell's where that is larger (`raise`).
+#[inline(always)]
+pub(super) fn raise_bounds(b: &mut [Vec3; 3], cell: &[Vec3; 3]) {
+    for (acc, new) in b.iter_mut().zip(cell) {
+        for i in 0..3 {
+            raise(&mut acc[i], new[i]);
+        }
+    }
 }
 
 #[cfg(test)]

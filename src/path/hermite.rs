@@ -8,6 +8,7 @@
 //! and evaluated in u: the planner runs the feed law in u and the chain rule uses p', p'', p'''
 //! w.r.t. u, so no arc-length inversion is needed and the derivative bounds are polynomial bounds.
 
+use super::budget::raise_bounds;
 use super::tolerance::{BOUND_ROUNDING, END_CHECK, MAX_TERM};
 use crate::geometry::{add, norm, scale, sub, Geo};
 use crate::Vec3;
@@ -194,13 +195,7 @@ impl Hermite {
     /// Guaranteed bounds per axis of |p'|, |p''|, |p'''| over [0, λ] (the largest of `cells`).
     pub fn derivative_bounds(&self) -> [Vec3; 3] {
         let mut b = [[0.0f64; 3]; 3];
-        self.cells(|cell| {
-            for (acc, new) in b.iter_mut().zip(cell) {
-                for i in 0..3 {
-                    acc[i] = acc[i].max(new[i]);
-                }
-            }
-        });
+        self.cells(|cell| raise_bounds(&mut b, &cell));
         b
     }
 
