@@ -466,13 +466,35 @@ fn entry_limit(kind: ProfileKind, e: &mut Entry, v_exit: f64, may_stop: bool) ->
 /// Relative margin by which a stop ramp must overrun the length for `stop_is_below`: far above
 /// the rounding of a ramp distance, so the distance as evaluated rises across it.
 const STOP_MARGIN: f64 = 1e-6;
+/// Relative margin by which `rest_ramp_floor` must overrun the length: far above the rounding of
+/// the floor and of the ramp distance, so the distance as evaluated then overruns it by
+/// `STOP_MARGIN` too.
+const FLOOR_MARGIN: f64 = 1e-4;
 
 /// Whether the stop limit (`max_entry` to 0) is below `v`, without solving it (a root search
 /// from rest through every band): the stop solve returns a speed whose ramp from rest fits in
 /// `length`, so where the ramp from rest to `v` overruns it clearly, that speed is below `v`
-/// and the slow-down limit `v` is the entry limit.
+/// and the slow-down limit `v` is the entry limit. The ramp's floor answers most of them
+/// without the ramp (the same answers: where the floor overruns, so does the ramp).
 fn stop_is_below(banded: &Banded, length: f64, v: f64) -> bool {
-    scurve7_banded::ramp_distance(banded, 0.0, v) > length * (1.0 + STOP_MARGIN)
+    rest_ramp_floor(banded, v) > length * (1.0 + FLOOR_MARGIN)
+        || scurve7_banded::ramp_distance(banded, 0.0, v) > length * (1.0 + STOP_MARGIN)
+}
+
+/// A floor of the distance of any ramp from rest to `v` within the bands: the S-curve's with the
+/// largest acceleration A and jerk J of any band, v·T/2. Along a ramp with a = 0 at both ends,
+/// a² ≤ 2J·u and a² ≤ 2J·(v − u) at speed u, and a ≤ A; the distance ∫ u/a du is least where a
+/// takes the least of these bounds, which is that S-curve. NaN (both limits infinite) is no floor.
+fn rest_ramp_floor(banded: &Banded, v: f64) -> f64 {
+    let levels = banded.bands.levels();
+    let a = levels.iter().map(|b| b.a_max).fold(banded.top.a_max, f64::max);
+    let j = levels.iter().map(|b| b.j_max).fold(banded.top.j_max, f64::max);
+    let t = if v * j >= a * a {
+        v / a + a / j
+    } else {
+        2.0 * (v / j).sqrt()
+    };
+    v * t / 2.0
 }
 
 /// `banded.max_entry(length, v_out)`, or None where it lies outside (below, above): under joined

@@ -161,3 +161,51 @@ fn junction_limit_is_respected() {
     assert_eq!(planned[1].v_out, 0.0);
     assert_eq!(planned[2].v_in, 0.0);
 }
+
+/// `rest_ramp_floor` is a floor of the joined bands' ramp from rest as evaluated (200 random
+/// band sets, speeds across and above them): `stop_is_below` answers the same with it.
+#[test]
+fn rest_ramp_floor_is_below_the_ramp() {
+    use crate::feed::bands::{Band, Bands};
+    use crate::feed::Limits;
+    let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut uniform = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..200 {
+        let top = Limits {
+            v_max: 0.01 + 0.2 * uniform(),
+            a_max: 0.5 + 3.0 * uniform(),
+            j_max: 10.0 + 200.0 * uniform(),
+            snap_max: f64::INFINITY,
+        };
+        let (mut a, mut j) = (top.a_max, top.j_max);
+        let mut levels = Vec::new();
+        for k in (1..=4).rev() {
+            (a, j) = (a * (1.0 + uniform()), j * (1.0 + 2.0 * uniform()));
+            let v_top = top.v_max * f64::from(k) / 5.0 * (0.8 + 0.2 * uniform());
+            levels.push(Band {
+                v_top,
+                a_max: a,
+                j_max: j,
+            });
+        }
+        levels.reverse();
+        let bands = Bands::below(&top, &levels);
+        let banded = Banded {
+            kind: ProfileKind::Scurve7,
+            top: &top,
+            bands: &bands,
+        };
+        assert!(banded.joined());
+        for i in 1..=40 {
+            let v = top.v_max * 1.2 * f64::from(i) / 40.0;
+            let d = scurve7_banded::ramp_distance(&banded, 0.0, v);
+            let floor = rest_ramp_floor(&banded, v);
+            assert!(floor <= d * (1.0 + 1e-12), "v {v}: floor {floor} > ramp {d}");
+        }
+    }
+}
