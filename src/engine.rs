@@ -231,9 +231,14 @@ impl Engine {
         self.load_force = force;
     }
 
-    /// Advance one interpolation period.
+    /// Advance one interpolation period: `run_to(ticks + 1, 0)` without its loop (one tick is
+    /// never a rest worth the closed form, nor too many ticks).
     pub fn step(&mut self) -> Result<&Tick, ProgramError> {
-        self.run_to(self.ticks + 1, 0.0)?;
+        self.drives_to(1.0);
+        self.ticks += 1;
+        self.phase = 0.0;
+        self.interpolate(self.time())?;
+        self.refresh_outputs();
         Ok(&self.tick)
     }
 
