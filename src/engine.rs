@@ -234,10 +234,7 @@ impl Engine {
     /// Advance one interpolation period: `run_to(ticks + 1, 0)` without its loop (one tick is
     /// never a rest worth the closed form, nor too many ticks).
     pub fn step(&mut self) -> Result<&Tick, ProgramError> {
-        self.drives_to(1.0);
-        self.ticks += 1;
-        self.phase = 0.0;
-        self.interpolate(self.time())?;
+        self.next_tick()?;
         self.refresh_outputs();
         Ok(&self.tick)
     }
@@ -284,10 +281,7 @@ impl Engine {
                 )));
             }
             stepped += 1;
-            self.drives_to(1.0);
-            self.ticks += 1;
-            self.phase = 0.0;
-            self.interpolate(self.time())?;
+            self.next_tick()?;
         }
         if phase > self.phase {
             self.drives_to(phase);
@@ -295,6 +289,15 @@ impl Engine {
         }
         self.refresh_outputs();
         Ok(())
+    }
+
+    /// The drives to the next tick, and the interpolator at it.
+    #[inline]
+    fn next_tick(&mut self) -> Result<(), ProgramError> {
+        self.drives_to(1.0);
+        self.ticks += 1;
+        self.phase = 0.0;
+        self.interpolate(self.time())
     }
 
     /// An error at the line being executed.
