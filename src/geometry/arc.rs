@@ -212,22 +212,45 @@ impl Arc {
     /// Where `p` lies about the arc's axis, and the arc's nearest point at its angle (`AtAngle`):
     /// the distance from the arc where its foot is not an end (`Source::distance`).
     pub fn at_angle(&self, p: Vec3) -> AtAngle {
+        let (x, y, z) = self.about_axis(p);
+        let rho = x.hypot(y);
+        let turn = self.nearest_turn(x, y, z, rho);
+        AtAngle { x, y, z, rho, turn }
+    }
+
+    /// `at_angle(p).turn`'s distance alone (`Source::distance`).
+    pub fn distance_at_angle(&self, p: Vec3) -> Option<f64> {
+        let (x, y, z) = self.about_axis(p);
+        self.nearest_turn(x, y, z, x.hypot(y)).map(|(_, d)| d)
+    }
+
+    /// The coordinates of `p` along e1, e2 and the axis.
+    fn about_axis(&self, p: Vec3) -> (f64, f64, f64) {
         let rel = sub(p, self.center);
-        let (x, y, z) = (dot(rel, self.e1), dot(rel, self.e2), dot(rel, self.axis));
+        (dot(rel, self.e1), dot(rel, self.e2), dot(rel, self.axis))
+    }
+
+    /// `AtAngle::turn` of the point at (x, y, z) about the axis, ρ from it.
+    fn nearest_turn(&self, x: f64, y: f64, z: f64, rho: f64) -> Option<(f64, f64)> {
         // atan2 lies in [−π, π], where `rem_euclid(TAU)` is this (its fmod returns |phi| < TAU
         // as is).
         let phi = y.atan2(x);
         let phi = if phi < 0.0 { phi + TAU } else { phi };
         let h = self.rise / self.sweep;
-        let rho = x.hypot(y);
         let radial = rho - self.radius;
-        let turns = (self.sweep / TAU).floor() as usize;
-        let turn = (0..=turns.min(64))
-            .map(|k| phi + TAU * k as f64)
+        let turn_at = |k: usize| phi + TAU * k as f64;
+        let distance_at = |f: f64| (f, radial.hypot(z - h * f));
+        let turns = self.sweep / TAU;
+        // Less than a full turn (all arcs but full circles): the first turn alone, which is what
+        // the search over the turns below takes from one.
+        if turns < 1.0 || turns.is_nan() {
+            return Some(turn_at(0)).filter(|&f| f <= self.sweep).map(distance_at);
+        }
+        (0..=(turns.floor() as usize).min(64))
+            .map(turn_at)
             .filter(|&f| f <= self.sweep)
-            .map(|f| (f, radial.hypot(z - h * f)))
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        AtAngle { x, y, z, rho, turn }
+            .map(distance_at)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
     }
 
     /// Per-axis bounds of |p'|, |p''|, |p'''| on stretches of at most `CELL_ANGLE` of the sweep:

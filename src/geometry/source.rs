@@ -40,5 +40,5 @@ pub fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f64 {
 
 fn distance_to_arc(p: Vec3, a: &Arc) -> f64 {
     let ends = norm(sub(p, a.start)).min(norm(sub(p, a.end)));
-    a.at_angle(p).turn.map_or(ends, |(_, d)| ends.min(d))
+    a.distance_at_angle(p).map_or(ends, |d| ends.min(d))
 }
