@@ -82,9 +82,24 @@ impl Guards {
 
     /// Sample `s`, at distance `d` from `mv` (`Source::distance`), keeps the half-steps about
     /// it within the tolerance of `mv`.
+    #[inline]
     pub(super) fn holds(&self, mv: &Move, s: &Sample, d: f64) -> bool {
         // The sample guard first: where it holds, the finer one (never larger) is not needed.
-        d <= mv.tolerance - self.sample || d <= mv.tolerance - self.growth(mv, s, d)
+        self.by_speed(mv, d) || self.by_growth(mv, s, d)
+    }
+
+    /// `holds` by the finer guard: out of line, as few samples need it (the sample guard's one
+    /// comparison stays where it is asked).
+    #[inline(never)]
+    fn by_growth(&self, mv: &Move, s: &Sample, d: f64) -> bool {
+        d <= mv.tolerance - self.growth(mv, s, d)
+    }
+
+    /// The sample guard alone keeps the half-steps about a sample at distance `d` from `mv`
+    /// within its tolerance (`holds` without the sample).
+    #[inline]
+    pub(super) fn by_speed(&self, mv: &Move, d: f64) -> bool {
+        d <= mv.tolerance - self.sample
     }
 
     /// How much the distance from `mv` can grow over half a step from sample `s` (at distance

@@ -15,12 +15,11 @@
 //!   its foot on the line lies in: the point is within the tolerance of the line, so of that
 //!   move.
 
-use super::cover::{lead, Guards, Leads};
+use super::cover::{lead, Guards, Leads, Sample};
 use super::hermite::Hermite;
 use super::smooth::{programmed, start_of, Move};
 use super::tolerance::{FOOT_BISECTIONS, TRANSITION_SAMPLES};
 use crate::geometry::{dot, sub, unit, Source};
-use crate::Vec3;
 
 /// Where each move after the first begins on the span fitted over `moves` (its parameter u).
 pub(super) fn span_marks(moves: &[Move]) -> Vec<(f64, u32)> {
@@ -85,17 +84,17 @@ fn nearest_onwards(h: &Hermite, ds: &Distances, g: &Guards) -> (u32, Vec<(f64, u
     let moves = ds.moves;
     let (mut at, mut own, mut marks, mut held) = (0, moves[0].line, Vec::new(), true);
     for k in 0..=TRANSITION_SAMPLES {
-        let s = g.sample(h, k);
+        let mut s = Lazy { g, h, k, s: None };
         // The nearest move from `at` on (the first of equals), and the distance to `at`'s.
-        let d0 = ds.of(at, k, s.p);
+        let d0 = ds.of(at, &mut s);
         let (mut j, mut dj) = (0, d0);
         for i in 1..moves.len() - at {
-            let d = ds.of(at + i, k, s.p);
+            let d = ds.of(at + i, &mut s);
             if d < dj {
                 (j, dj) = (i, d);
             }
         }
-        let d_at = if j > 0 && (g.holds(moves[at + j], &s, dj) || !g.holds(moves[at], &s, d0)) {
+        let d_at = if j > 0 && (s.holds(moves[at + j], dj) || !s.holds(moves[at], d0)) {
             at += j;
             if k > 0 {
                 marks.push((g.step * (k as f64 - 0.5), moves[at].line));
@@ -104,12 +103,34 @@ fn nearest_onwards(h: &Hermite, ds: &Distances, g: &Guards) -> (u32, Vec<(f64, u
         } else {
             d0
         };
-        held &= g.holds(moves[at], &s, d_at);
+        held &= s.holds(moves[at], d_at);
         if k == 0 {
             own = moves[at].line;
         }
     }
     (own, marks, held)
+}
+
+/// Sample k of a transition, its point evaluated only where a distance or the finer guard needs
+/// it: the lead move's distance is the tolerance check's, and most samples hold by the sample
+/// guard alone (past the middle, mostly all a sample needs).
+struct Lazy<'a> {
+    g: &'a Guards,
+    h: &'a Hermite,
+    k: usize,
+    s: Option<Sample<'a>>,
+}
+
+impl<'a> Lazy<'a> {
+    fn get(&mut self) -> &Sample<'a> {
+        let (g, h, k) = (self.g, self.h, self.k);
+        self.s.get_or_insert_with(|| g.sample(h, k))
+    }
+
+    /// `Guards::holds`, the sample taken only where the sample guard alone does not hold.
+    fn holds(&mut self, mv: &Move, d: f64) -> bool {
+        self.g.by_speed(mv, d) || self.g.holds(mv, self.get(), d)
+    }
 }
 
 /// The moves a transition replaces (those before it, then those after) and the distances to
@@ -121,12 +142,12 @@ struct Distances<'a> {
 }
 
 impl Distances<'_> {
-    /// The distance from sample k (at `p`) to move i: the tolerance check's where it measured
-    /// it, the same value.
-    fn of(&self, i: usize, k: usize, p: Vec3) -> f64 {
+    /// The distance from sample `s` to move i: the tolerance check's where it measured it, the
+    /// same value.
+    fn of(&self, i: usize, s: &mut Lazy) -> f64 {
         match self.leads {
-            Some(leads) if i == lead(k, self.before, self.moves.len() - self.before) => leads[k],
-            _ => self.moves[i].source.distance(p),
+            Some(leads) if i == lead(s.k, self.before, self.moves.len() - self.before) => leads[s.k],
+            _ => self.moves[i].source.distance(s.get().p),
         }
     }
 }
