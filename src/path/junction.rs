@@ -19,7 +19,7 @@ use crate::config::Machine;
 use crate::feed::scurve7_banded::Rise;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
-use cost::{cost_floor, joined_sides, local_cost, side, End, Far, Side};
+use cost::{cost_floor, joined_sides, local_cost, side, stop_below, End, Far, Side};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -241,12 +241,12 @@ pub(super) fn transition(
     // counted too (a short span's ramps to and from the corner share its length: where the
     // first says stop, the second often does not).
     let best = cuts[at].as_ref()?;
-    if local_cost(0.0, 0.0, 0.0, &sides) < best.cost - SAVING {
+    if stop_below(&sides, best.cost - SAVING) {
         for (k, side) in sides.iter_mut().enumerate() {
             side.far = far_of(k, side);
         }
         let at_best = local_cost(best.d, best.h.length(), best.at, &sides);
-        if local_cost(0.0, 0.0, 0.0, &sides) < at_best - SAVING {
+        if stop_below(&sides, at_best - SAVING) {
             return None;
         }
     }
