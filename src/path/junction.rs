@@ -354,8 +354,9 @@ impl Search<'_> {
     /// there (a longer cut leaves less room). Each rise is solved only where it takes more than
     /// that rest to the speed so far. A cut that leaves nothing of a span that starts at rest
     /// starts at rest: speed 0, never taken over a shorter cut. At the speed's ceiling it bounds
-    /// the cost from below (`try_at` prunes by it).
-    fn speed(&self, d: f64, v_max: f64) -> f64 {
+    /// the cost from below (`try_at` prunes by it). `solved`: each end's top speed over what is
+    /// left of its span, once solved for this cut (the same rise and rest, the same speed).
+    fn speed(&self, d: f64, v_max: f64, solved: &mut [Option<f64>; 2]) -> f64 {
         let rests = [self.held.piece.length(), self.next.piece.length()].map(|l| (l - d).max(0.0));
         if rests[0] == 0.0 && self.held.entry == Some(0.0) {
             return 0.0;
@@ -364,10 +365,10 @@ impl Search<'_> {
         if rests[0] == 0.0 {
             v = v.min(self.held.entry.unwrap_or(v));
         }
-        for (end, rest) in self.ends.iter().zip(rests) {
+        for ((end, rest), solved) in self.ends.iter().zip(rests).zip(solved) {
             if let Some((rise, _)) = end.filter(|&(_, to_slower)| rest < to_slower) {
                 if rise.time_distance(v).1 > rest {
-                    v = v.min(rise.max_speed(rest));
+                    v = v.min(*solved.get_or_insert_with(|| rise.max_speed(rest)));
                 }
             }
         }
@@ -382,13 +383,14 @@ impl Search<'_> {
             return false;
         }
         let h = cut_curve(self.held, self.next, d, share);
-        let v_ceiling = self.speed(d, Own::ceiling_of(&h, self.feed, self.m));
+        let v_ceiling = self.speed(d, Own::ceiling_of(&h, self.feed, self.m), &mut [None; 2]);
         local_cost(d, h.length(), v_ceiling, self.sides) < best.cost - SAVING
     }
 
     /// Its time at the corner: faster than the slower neighbour, it runs at that one's speed
     /// (in its chain, or with no room to ramp between), so at the slowest of the three.
-    /// `known`: a speed this cut was costed at already, and that cost.
+    /// `known`: a speed this cut was costed at already, and that cost; `solved` as for `speed`.
+    #[allow(clippy::too_many_arguments)]
     fn found(
         &self,
         k: i32,
@@ -397,8 +399,9 @@ impl Search<'_> {
         (v_max, own): (f64, Own),
         share: f64,
         known: Option<(f64, f64)>,
+        solved: &mut [Option<f64>; 2],
     ) -> Found {
-        let v = self.speed(d, v_max);
+        let v = self.speed(d, v_max, solved);
         Found {
             at: v,
             cost: match known {
@@ -454,7 +457,7 @@ impl Search<'_> {
             // where a smaller one runs through.
             match faster_than_a_stop(&h, self.feed, m) {
                 Some(speed) => {
-                    let mut found = self.found(k, d, h, speed, share, None);
+                    let mut found = self.found(k, d, h, speed, share, None, &mut [None; 2]);
                     found.leads = leads;
                     *slot = Some(found);
                     break;
@@ -475,7 +478,8 @@ impl Search<'_> {
             let mut own = Own::of(&h, self.feed, m);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
-            let v_ceiling = self.speed(d, own.ceiling());
+            let mut solved = [None; 2];
+            let v_ceiling = self.speed(d, own.ceiling(), &mut solved);
             let prune = best.cost - SAVING + PRUNE_MARGIN * best.cost.abs();
             // Most of them are pruned by a bound of that cost from below (`cost_floor`), without
             // the banded ramps' solves.
@@ -489,7 +493,7 @@ impl Search<'_> {
             let v_max = own.speed(m);
             // Where the neighbours cap both speeds alike, the cost is the one just found.
             let known = Some((v_ceiling, at_ceiling));
-            let mut shorter = self.found(k, d, h, (v_max, own), share, known);
+            let mut shorter = self.found(k, d, h, (v_max, own), share, known, &mut solved);
             (shorter.cost < best.cost - SAVING).then_some(())?;
             self.within(d, &shorter.h, &mut shorter.leads).then_some(())?;
             *best = shorter;
