@@ -14,7 +14,7 @@
 //! line itself, whose junctions the transitions then cut along its whole length.
 
 use super::chain::{Curve, CurveLimits, Own, Piece};
-use super::hermite::{bezier, Hermite, Jet};
+use super::hermite::{bezier, Hermite, Jet, Unbounded};
 use super::junction::corner_speed;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span, TIGHTER_RAMP};
 use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
@@ -239,7 +239,7 @@ impl SmoothBuilder {
             Jet { p, d1: t, d2: k }
         };
         let lambda: f64 = moves.iter().map(|mv| mv.source.length()).sum();
-        let h = Hermite::new(
+        let shape = Hermite::unbounded(
             jet(start_of(&first), a, &first),
             jet(end_of(&last), b, &last),
             lambda,
@@ -258,8 +258,8 @@ impl SmoothBuilder {
         // the third, and where it is kept (those of a curve the first two reject are not needed).
         // Over one line between two corners of the run, the line's time does not take that
         // speed: where even its ceiling is slower, the speed is not solved.
-        let kept = || {
-            let mut own = Own::of(&h, first.feed, m);
+        let kept = |h: &Hermite| {
+            let mut own = Own::of(h, first.feed, m);
             let inner = its_line_time(span, None, m);
             if inner.is_some_and(|line| slower_than_its_line(h.length(), own.ceiling(), line)) {
                 return None;
@@ -279,7 +279,8 @@ impl SmoothBuilder {
             let from_rest = if rest_to_rest { stops } else { TIGHTER_RAMP * stops };
             (!slower_from_rest(h.length(), &own, from_rest)).then_some(own)
         };
-        if let Some(own) = within_chords(&h, moves).then(kept).flatten() {
+        let fitted = within_chords(&shape, moves).then(|| shape.bounded());
+        if let Some((h, own)) = fitted.and_then(|h| Some((h, kept(&h)?))) {
             let mut span = Span::fitted(Piece::whole(Curve::Hermite(h), first.line), moves);
             span.own = Some(own);
             self.junction(span, m, out);
@@ -436,7 +437,7 @@ fn line_of(mv: &Move) -> Line {
 /// each part lies in the hull of its control points, which come close to the curve as the parts
 /// shrink. The whole tolerance: with 0.7 of it (a span that needed more was taken to fit badly)
 /// the CAM-like 100 k lines ran 2.9 % longer.
-fn within_chords(h: &Hermite, moves: &[Move]) -> bool {
+fn within_chords(h: &Unbounded, moves: &[Move]) -> bool {
     let lambda = h.length();
     let mut u = 0.0;
     let mut jet_u = h.jet(0.0);

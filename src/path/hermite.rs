@@ -50,6 +50,27 @@ impl From<Coefficients> for Hermite {
     }
 }
 
+/// A curve as `Hermite::new` builds it, before its speed bound: its points and derivatives only.
+/// The fit checks a span's chords first, and the curves they reject need no bound.
+pub(super) struct Unbounded(Hermite);
+
+impl Unbounded {
+    pub(super) fn length(&self) -> f64 {
+        self.0.length()
+    }
+
+    pub(super) fn jet(&self, u: f64) -> Jet {
+        self.0.jet(u)
+    }
+
+    /// The curve with its speed bound (`Hermite::speed_bound`).
+    pub(super) fn bounded(self) -> Hermite {
+        let mut h = self.0;
+        h.speed = h.speed_bound_of_coefficients();
+        h
+    }
+}
+
 /// End data of a curve piece: point, first and second derivative w.r.t. its parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Jet {
@@ -61,6 +82,11 @@ pub struct Jet {
 impl Hermite {
     /// The quintic with jet `a` at u = 0 and jet `b` at u = `lambda` (derivatives w.r.t. u).
     pub fn new(a: Jet, b: Jet, lambda: f64) -> Hermite {
+        Hermite::unbounded(a, b, lambda).bounded()
+    }
+
+    /// `new` before its speed bound is computed.
+    pub(super) fn unbounded(a: Jet, b: Jet, lambda: f64) -> Unbounded {
         let l = lambda;
         // In τ = u/λ: M = λ·p', A = λ²·p'' at both ends (standard quintic Hermite basis).
         let d = sub(b.p, a.p);
@@ -83,19 +109,21 @@ impl Hermite {
             lk *= l;
             c[k] = scale(tau[k], 1.0 / lk);
         }
-        Hermite::with_coefficients(a.p, b.p, lambda, c)
+        Hermite::unbounded_with(a.p, b.p, lambda, c)
     }
 
     fn with_coefficients(start: Vec3, end: Vec3, lambda: f64, c: [Vec3; 5]) -> Hermite {
-        let mut h = Hermite {
+        Hermite::unbounded_with(start, end, lambda, c).bounded()
+    }
+
+    fn unbounded_with(start: Vec3, end: Vec3, lambda: f64, c: [Vec3; 5]) -> Unbounded {
+        Unbounded(Hermite {
             start,
             end,
             lambda,
             c,
-            speed: 0.0,
-        };
-        h.speed = h.speed_bound_of_coefficients();
-        h
+            speed: f64::NAN,
+        })
     }
 
     pub fn length(&self) -> f64 {
