@@ -308,7 +308,8 @@ proptest! {
     /// Not yet: a larger tolerance changes the path (more of the short moves fitted as curves,
     /// the chains and their limits; see the module comment), and that still lengthens about 1 in
     /// 125 of these programs by more than 1e-3 (`tolerance_failure_rate`, seeds 1 and 2: 0.6 and
-    /// 1.1 %, seeds 1–6 48 of 6000, the worst by 2.75 %; 55 before the far corner's estimate
+    /// 1.0 %, seeds 1–6 47 of 6000, the worst by 2.75 %; 48 before the tiny moves a line takes
+    /// counted in a fitted curve's baseline; 55 before the far corner's estimate
     /// within the half of its span the corner before leaves; 181 before the ends of the spans beside a
     /// corner were counted; 8.8 and 8.6 % on seeds 1 and 2 before the junction grid, the stop by
     /// cost and the pass-through look-ahead; 10.6 % on seed 1 before the tight-bend transitions, whose cut over a short span

@@ -19,8 +19,9 @@ use crate::valid::{at_most, within};
 // centre of a held G41/G42 entry arc; 13: a smooth span keeps the moves it stands for; 14: and
 // the bound on its speed where it begins, and the planner's pass-through entry limits; 15: the
 // smooth span waiting for the next before its junction; 16: a smooth chain's bound cells, none
-// until it closes where its pieces' were not needed before.
-const STATE_VERSION: u32 = 16;
+// until it closes where its pieces' were not needed before; 17: the length of the tiny moves
+// a smooth move took.
+const STATE_VERSION: u32 = 17;
 
 /// Fields whose numbers may be more than finite and moderate (see `valid::numbers`): the
 /// planner's "not computed yet" and "no junction limit", a quintic's power coefficients.

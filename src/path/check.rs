@@ -72,7 +72,8 @@ pub(super) fn programmed(m: &Move) -> Check {
         Source::Arc(a) => arc(a)?,
     }
     within("move feed", m.feed, 0.0, MAX_SPEED_M_S)?;
-    within("move tolerance", m.tolerance, 0.0, MAX_COORDINATE_M)
+    within("move tolerance", m.tolerance, 0.0, MAX_COORDINATE_M)?;
+    within("tiny moves taken", m.absorbed, 0.0, MAX_COORDINATE_M)
 }
 
 /// A held piece of the smooth builder, or a chain being filled (possibly empty).

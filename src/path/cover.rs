@@ -178,6 +178,7 @@ mod tests {
             feed: 0.05,
             tolerance,
             exact: false,
+            absorbed: 0.0,
         }
     }
 

@@ -46,6 +46,7 @@ fn line_taking(mv: &Move, start: Vec3, end: Vec3, absorbed: f64) -> Move {
     Move {
         source: Source::Line(Line { start, end }),
         tolerance: mv.tolerance - absorbed,
+        absorbed: mv.absorbed + absorbed,
         ..*mv
     }
 }
@@ -111,9 +112,13 @@ impl Tiny {
         fits(self.absorbed, tolerance)
     }
 
-    /// The tiny moves as one line, its tolerance lowered by their length.
+    /// The tiny moves as one line, its tolerance lowered by their length (a line of them, not
+    /// one that took them).
     pub fn line(&self) -> Move {
-        line_taking(&self.last, self.start, self.end, self.absorbed)
+        Move {
+            absorbed: 0.0,
+            ..line_taking(&self.last, self.start, self.end, self.absorbed)
+        }
     }
 
     /// The line `before` them, from `start`, ending where they end (it takes them).

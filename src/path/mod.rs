@@ -345,6 +345,7 @@ impl PathBuilder {
                 feed,
                 tolerance,
                 exact,
+                absorbed: 0.0,
             };
             if self.micro.held_before(&mv) {
                 self.run_tiny(out);

@@ -50,6 +50,8 @@ pub struct Move {
     pub tolerance: f64,
     /// G61 on this move: stop at both its ends.
     pub exact: bool,
+    /// Length of the tiny moves this line took (micro.rs); 0 as programmed.
+    pub absorbed: f64,
 }
 
 /// A span on its way through stage 2: the piece left of it, the programmed moves it stands for

@@ -249,6 +249,7 @@ mod tests {
             feed: 0.05,
             tolerance: 0.01,
             exact: false,
+            absorbed: 0.0,
         }
     }
 
