@@ -91,7 +91,7 @@ impl Guards {
     /// `holds` by the finer guard: out of line, as few samples need it (the sample guard's one
     /// comparison stays where it is asked).
     #[inline(never)]
-    fn by_growth(&self, mv: &Move, s: &Sample, d: f64) -> bool {
+    pub(super) fn by_growth(&self, mv: &Move, s: &Sample, d: f64) -> bool {
         d <= mv.tolerance - self.growth(mv, s, d)
     }
 

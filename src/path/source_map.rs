@@ -129,7 +129,7 @@ impl<'a> Lazy<'a> {
 
     /// `Guards::holds`, the sample taken only where the sample guard alone does not hold.
     fn holds(&mut self, mv: &Move, d: f64) -> bool {
-        self.g.by_speed(mv, d) || self.g.holds(mv, self.get(), d)
+        self.g.by_speed(mv, d) || self.g.by_growth(mv, self.get(), d)
     }
 }
 

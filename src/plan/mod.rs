@@ -23,7 +23,7 @@ pub use feed_control::{FeedControl, Here, Replan};
 
 use crate::feed::bands::Banded;
 use crate::feed::scurve7_banded::{self, Rise};
-use crate::feed::{BlockRequest, FeedLaw, Profile, ProfileKind};
+use crate::feed::{scurve7, BlockRequest, FeedLaw, Profile, ProfileKind};
 use crate::path::{PathBlock, Segment};
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -481,20 +481,14 @@ fn stop_is_below(banded: &Banded, length: f64, v: f64) -> bool {
         || scurve7_banded::ramp_distance(banded, 0.0, v) > length * (1.0 + STOP_MARGIN)
 }
 
-/// A floor of the distance of any ramp from rest to `v` within the bands: the S-curve's with the
-/// largest acceleration A and jerk J of any band, v·T/2. Along a ramp with a = 0 at both ends,
-/// a² ≤ 2J·u and a² ≤ 2J·(v − u) at speed u, and a ≤ A; the distance ∫ u/a du is least where a
-/// takes the least of these bounds, which is that S-curve. NaN (both limits infinite) is no floor.
+/// A floor of the distance of any ramp from rest to `v` within the bands: the S-curve's within
+/// the widest of their pairs (the largest acceleration A and jerk J of any band), v·T/2. Along a
+/// ramp with a = 0 at both ends, a² ≤ 2J·u and a² ≤ 2J·(v − u) at speed u, and a ≤ A; the
+/// distance ∫ u/a du is least where a takes the least of these bounds, which is that S-curve.
+/// 0 (no floor) where a limit is infinite.
 fn rest_ramp_floor(banded: &Banded, v: f64) -> f64 {
-    let levels = banded.bands.levels();
-    let a = levels.iter().map(|b| b.a_max).fold(banded.top.a_max, f64::max);
-    let j = levels.iter().map(|b| b.j_max).fold(banded.top.j_max, f64::max);
-    let t = if v * j >= a * a {
-        v / a + a / j
-    } else {
-        2.0 * (v / j).sqrt()
-    };
-    v * t / 2.0
+    let (_, widest) = banded.bands.pair_range(banded.top);
+    scurve7::ramp_distance(0.0, v, &widest)
 }
 
 /// `banded.max_entry(length, v_out)`, or None where it lies outside (below, above): under joined
