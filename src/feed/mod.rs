@@ -283,3 +283,26 @@ pub fn max_exit(kind: ProfileKind, length: f64, v_in: f64, lim: &Limits) -> f64 
         ProfileKind::Trapezoid => trapezoid::max_exit(length, v_in, lim),
     }
 }
+
+/// `x.min(y)` for a `y` that is not NaN, in one comparison where `min` takes several (and keeps
+/// loops out of SIMD lanes): a NaN `x` gives `y` as `min` does, and of equal values it may take
+/// the other zero's sign, which moves no comparison, divisor or sum where it is used (the
+/// envelopes' speeds, the curves' budgets).
+#[inline(always)]
+pub(crate) fn lesser(x: f64, y: f64) -> f64 {
+    if x < y {
+        x
+    } else {
+        y
+    }
+}
+
+/// `x.max(y)` likewise (`lesser`).
+#[inline(always)]
+pub(crate) fn greater(x: f64, y: f64) -> f64 {
+    if x > y {
+        x
+    } else {
+        y
+    }
+}

@@ -6,6 +6,7 @@
 use super::tolerance::{FIT_STEPS, NEGLIGIBLE, SHARE_SLACK};
 use crate::config::{AxisLimits, Machine};
 use crate::feed::roots::cubic_pos;
+use crate::feed::{greater, lesser};
 use crate::Vec3;
 
 /// The budgets of one curve: cells of per-axis bounds (|p'|, |p''|, |p'''|) over its parameter,
@@ -277,18 +278,16 @@ fn lower_where_may<const N: usize>(
     (N / GROUP * GROUP..N).for_each(|k| lower(&mut acc[k], term(k)));
 }
 
-/// acc = min(acc, x) for a finite acc, as a compare and select (`f64::min`'s NaN rule keeps
-/// the loops above from running in SIMD lanes; a NaN x leaves acc either way).
+/// acc = min(acc, x) for an acc that is not NaN (`lesser`: a NaN x leaves acc).
 #[inline(always)]
 pub(super) fn lower(acc: &mut f64, x: f64) {
-    *acc = if x < *acc { x } else { *acc };
+    *acc = lesser(x, *acc);
 }
 
-/// acc = max(acc, x) for a finite acc, as a compare and select (`lower`'s NaN rule: a NaN x
-/// leaves acc, as `f64::max` does).
+/// acc = max(acc, x) likewise (`greater`).
 #[inline(always)]
 pub(super) fn raise(acc: &mut f64, x: f64) {
-    *acc = if x > *acc { x } else { *acc };
+    *acc = greater(x, *acc);
 }
 
 /// Largest v ≥ 0 with d·v^n ≤ left (∞ if d is 0, 0 if nothing is left).

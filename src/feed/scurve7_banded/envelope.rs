@@ -8,6 +8,7 @@
 //! and the merge per ramp; every piece, hence every sum, is the one a rise built whole gives.
 
 use crate::feed::bands::{Banded, MAX_BANDS};
+use crate::feed::{greater, lesser};
 use arrayvec::ArrayVec;
 use std::cell::RefCell;
 
@@ -44,28 +45,6 @@ impl Piece {
     pub fn run(&self) -> (f64, f64, f64) {
         let (tau, j, a0) = self.phase();
         (tau, j, tau * (self.v0 + tau * (0.5 * a0 + tau * j / 6.0)))
-    }
-}
-
-/// `x.min(y)` for a `y` that is not NaN, in one comparison where `min` takes several: a NaN `x`
-/// gives `y` as `min` does, and of equal values it may take the other zero's sign, which moves
-/// no comparison and no divisor here, and no sum (each starts at +0).
-#[inline(always)]
-fn lesser(x: f64, y: f64) -> f64 {
-    if x < y {
-        x
-    } else {
-        y
-    }
-}
-
-/// `x.max(y)` likewise (`lesser`).
-#[inline(always)]
-fn greater(x: f64, y: f64) -> f64 {
-    if x > y {
-        x
-    } else {
-        y
     }
 }
 
