@@ -298,14 +298,18 @@ impl Reader {
 
     /// `%` lines (LinuxCNC "File Requirements"): true if the line was one and is done with.
     fn percent_line(&mut self, line: u32, raw: &str) -> Result<bool, ProgramError> {
-        let text = raw.trim();
-        let is_percent = text == "%";
         // Only the program is demarcated; in a subroutine file `%` is no word.
         let state = if self.src == 0 {
             self.percent
         } else {
             Percent::None
         };
+        // Once demarcation is settled, only a line's start is looked at (the end test below).
+        let text = match state {
+            Percent::None => raw.trim_start(),
+            _ => raw.trim(),
+        };
+        let is_percent = text == "%";
         match state {
             Percent::Unknown if text.is_empty() => return Ok(true),
             Percent::Unknown if is_percent => {

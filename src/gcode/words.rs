@@ -80,44 +80,57 @@ fn split_inner(
             b'o' | b'O' => return Err(err(i, "an O-word must begin its line (LinuxCNC \"O Codes\")")),
             // `@` and `^`: polar distance and angle (LinuxCNC "Polar Coordinates").
             c if c.is_ascii_alphabetic() || c == b'@' || c == b'^' => {
-                let col = i;
-                i += 1;
-                let k = i + b[i..].iter().take_while(|&&x| x == b' ' || x == b'\t').count();
                 let letter = c.to_ascii_uppercase();
-                if let Some((p, _)) = params.as_ref().filter(|_| is_expression(b, k)) {
-                    let mut e = Expr::new(b, k, p);
-                    let value = e
-                        .primary()
-                        .map_err(|(at, m)| err(at, format!("{}: {m}", letter as char)))?;
-                    i = e.i;
-                    let col = col as u32 + 1;
-                    out.push(Word { letter, value, col });
-                    continue;
-                }
-                match b.get(k) {
-                    Some(b'#') => {
-                        return Err(err(k, "unsupported # parameter (variables are not supported)"))
-                    }
-                    Some(b'[') => {
-                        return Err(err(
-                            k,
-                            "unsupported expression '[' (expressions are not supported)",
-                        ))
-                    }
-                    _ => {}
-                }
-                let (value, next) = number(b, i).map_err(|m| err(col, format!("{}: {m}", c as char)))?;
-                i = next;
+                // A digit or point after the letter (and its sign) starts a number: no
+                // parameter or expression.
+                let signed = matches!(b.get(i + 1), Some(b'-' | b'+'));
+                let first = i + 1 + usize::from(signed);
+                let plain = b.get(first).is_some_and(|&x| x.is_ascii_digit() || x == b'.');
+                let found = match plain {
+                    true => None,
+                    false => not_plain(b, i + 1, letter, params.as_ref().map(|(p, _)| *p))?,
+                };
+                let (value, next) = match found {
+                    Some(found) => found,
+                    None => number(b, i + 1).map_err(|m| err(i, format!("{}: {m}", c as char)))?,
+                };
                 out.push(Word {
-                    letter: c.to_ascii_uppercase(),
+                    letter,
                     value,
-                    col: col as u32 + 1,
+                    col: i as u32 + 1,
                 });
+                i = next;
             }
             _ => return Err(err(i, format!("unexpected character '{}'", printable(line, i)))),
         }
     }
     Ok(())
+}
+
+/// The value of `letter` from `i` where it is no plain number: an expression's (with `params`),
+/// an error for `#` or `[` without them; None where `number` reads it.
+fn not_plain(
+    b: &[u8],
+    i: usize,
+    letter: u8,
+    params: Option<&Params>,
+) -> Result<Option<(f64, usize)>, LexError> {
+    let k = i + b[i..].iter().take_while(|&&x| x == b' ' || x == b'\t').count();
+    if let Some(p) = params.filter(|_| is_expression(b, k)) {
+        let mut e = Expr::new(b, k, p);
+        let value = e
+            .primary()
+            .map_err(|(at, m)| err(at, format!("{}: {m}", letter as char)))?;
+        return Ok(Some((value, e.i)));
+    }
+    match b.get(k) {
+        Some(b'#') => Err(err(k, "unsupported # parameter (variables are not supported)")),
+        Some(b'[') => Err(err(
+            k,
+            "unsupported expression '[' (expressions are not supported)",
+        )),
+        _ => Ok(None),
+    }
 }
 
 /// A parameter setting `#key = value` starting at `i` (the `#`); the index after it.
@@ -167,41 +180,47 @@ const PLAIN_DIGITS: usize = 15;
 /// most `PLAIN_DIGITS` digits), as m / 10^k: m and 10^k are exact, so the division's one rounding
 /// gives the correctly rounded value, which `str::parse` gives too. None: `number` reads it.
 fn plain_number(b: &[u8], i: usize) -> Option<(f64, usize)> {
-    let (negative, mut k) = match b.get(i) {
+    let (negative, start) = match b.get(i) {
         Some(b'-') => (true, i + 1),
         Some(b'+') => (false, i + 1),
         _ => (false, i),
     };
-    let (mut m, mut digits, mut decimals, mut point) = (0u64, 0, 0, false);
-    while let Some(&c) = b.get(k) {
-        match c {
-            b'0'..=b'9' => {
-                m = 10 * m + u64::from(c - b'0');
-                digits += 1;
-                decimals += usize::from(point);
-            }
-            b'.' if !point => point = true,
-            b' ' | b'\t' => {
-                // A number that goes on after a space is `number`'s.
-                let next = b[k..].iter().find(|&&x| x != b' ' && x != b'\t');
-                if next.is_some_and(|&x| x.is_ascii_digit() || (x == b'.' && !point)) {
-                    return None;
-                }
-                break;
-            }
-            _ => break,
-        }
-        if digits > PLAIN_DIGITS {
+    let (m, whole_end) = digits_from(b, start, 0);
+    let point = b.get(whole_end) == Some(&b'.');
+    let (m, end) = if point {
+        digits_from(b, whole_end + 1, m)
+    } else {
+        (m, whole_end)
+    };
+    let decimals = if point { end - whole_end - 1 } else { 0 };
+    let digits = whole_end - start + decimals;
+    if matches!(b.get(end), Some(b' ' | b'\t')) {
+        // A number that goes on after a space is `number`'s.
+        let next = b[end..].iter().find(|&&x| x != b' ' && x != b'\t');
+        if next.is_some_and(|&x| x.is_ascii_digit() || (x == b'.' && !point)) {
             return None;
         }
-        k += 1;
+    }
+    if digits == 0 || digits > PLAIN_DIGITS {
+        return None;
     }
     let v = m as f64 / EXACT_POWERS[decimals];
-    (digits > 0).then_some((if negative { -v } else { v }, k))
+    Some((if negative { -v } else { v }, end))
+}
+
+/// The digits from `k` appended to `m` (wrapping past 19 digits, which `plain_number` refuses
+/// anyway), and the index after them.
+fn digits_from(b: &[u8], mut k: usize, mut m: u64) -> (u64, usize) {
+    while let Some(&c) = b.get(k).filter(|c| c.is_ascii_digit()) {
+        m = m.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
+        k += 1;
+    }
+    (m, k)
 }
 
 /// A real number starting at `i` (spaces allowed anywhere inside, as LinuxCNC does):
 /// optional sign, digits, optional point and digits; at least one digit.
+#[inline]
 pub(crate) fn number(b: &[u8], i: usize) -> Result<(f64, usize), String> {
     plain_number(b, i).map_or_else(|| spelled_number(b, i), Ok)
 }

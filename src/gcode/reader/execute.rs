@@ -21,7 +21,9 @@ impl Reader {
         // F (step 4) comes before G20/G21 (step 16): read in the units in force before the line.
         let f_unit = self.unit;
         let codes = self.modal_words(line, words)?;
-        let mut w = self.read_words(line, words, f_unit)?;
+        // Filled in place: returned, the record (a few hundred bytes) was copied twice.
+        let mut w = LineWords::default();
+        self.read_words(line, words, f_unit, &mut w)?;
         self.check_group_zero(line, &codes, &w)?;
         self.check_nurbs_open(line, &codes)?;
         self.apply_tool(line, &codes, &w.extra, &mut w.axes)?;
@@ -208,7 +210,8 @@ impl Reader {
             self.timed(line, col, w, &mut blocks)?;
         }
         self.position = to;
-        self.pending.extend(blocks);
+        let [block] = blocks;
+        self.pending.push_back(block);
         Ok(())
     }
 

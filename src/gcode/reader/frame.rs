@@ -102,11 +102,16 @@ impl Reader {
                 }
             }
         } else if !self.rotated() && !polar {
+            // The program origin in machine axes, worked out once for the axes given.
+            let origin = match self.absolute {
+                true => self.to_machine([0.0; 3]),
+                false => [0.0; 3],
+            };
             // Axis by axis, so an axis not programmed keeps its position exactly.
             for (i, a) in axes.iter().enumerate() {
                 if let Some((v, _)) = a {
                     to[i] = if self.absolute {
-                        v * self.unit + self.to_machine([0.0; 3])[i]
+                        v * self.unit + origin[i]
                     } else {
                         self.position[i] + v * self.unit
                     };

@@ -67,9 +67,12 @@ impl Reader {
         // LinuxCNC's read_g drops G80 when another motion code (group 1) is on the line, in
         // either order (its planner tests start `G90 G17 G40 G80 G00 G20`), and a second G80.
         let tenths = |w: &Word| (w.value * 10.0).round() as i64;
-        let motion_besides_g80 = words
-            .iter()
-            .any(|w| w.letter == b'G' && g_group(tenths(w)) == Some(0) && tenths(w) != 800);
+        // Asked only where a G80 is met.
+        let motion_besides_g80 = || {
+            words
+                .iter()
+                .any(|w| w.letter == b'G' && g_group(tenths(w)) == Some(0) && tenths(w) != 800)
+        };
         for w in words.iter().filter(|w| w.letter == b'G' || w.letter == b'M') {
             // Codes with one decimal (G90.1); compare in tenths.
             let code = (w.value * 10.0).round() as i64;
@@ -81,7 +84,7 @@ impl Reader {
                 self.m_code(line, code, w.col, &mut codes)?;
                 continue;
             }
-            if code == 800 && w.letter == b'G' && (motion_besides_g80 || groups[0].is_some()) {
+            if code == 800 && w.letter == b'G' && (groups[0].is_some() || motion_besides_g80()) {
                 continue;
             }
             if let Some(g) = g_group(code) {

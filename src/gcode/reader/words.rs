@@ -25,25 +25,29 @@ pub(super) struct LineWords {
 impl LineWords {
     /// Whether the line has an axis or polar word.
     pub fn moves(&self) -> bool {
-        self.axes.iter().chain(&self.polar).any(Option::is_some)
+        self.axes.iter().any(Option::is_some) || self.polar.iter().any(Option::is_some)
     }
 
     /// Column of the first axis or polar word.
     pub fn first_axis(&self) -> Option<u32> {
-        self.axes.iter().chain(&self.polar).flatten().map(|a| a.1).min()
+        let first = |words: &[Located]| words.iter().flatten().map(|a| a.1).min();
+        match (first(&self.axes), first(&self.polar)) {
+            (Some(a), Some(p)) => Some(a.min(p)),
+            (a, p) => a.or(p),
+        }
     }
 }
 
 impl Reader {
     /// Sort the words of a line (each letter at most once, LinuxCNC's rule); F is applied at
-    /// once in G94 (`f_unit` per minute), capped at the machine's largest feed.
+    /// once in G94 (`f_unit` per minute), capped at the machine's largest feed. `out` starts empty.
     pub(super) fn read_words(
         &mut self,
         line: u32,
         words: &[Word],
         f_unit: f64,
-    ) -> Result<LineWords, ProgramError> {
-        let mut out = LineWords::default();
+        out: &mut LineWords,
+    ) -> Result<(), ProgramError> {
         for w in words {
             let v = w.value;
             let located = |m: String| self.error(line, w.col, m);
@@ -93,6 +97,6 @@ impl Reader {
             }
             *slot = Some((v, w.col));
         }
-        Ok(out)
+        Ok(())
     }
 }
