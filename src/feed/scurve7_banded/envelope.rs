@@ -56,8 +56,9 @@ struct Pieces(ArrayVec<Piece, MAX_PIECES>);
 impl Pieces {
     fn push(&mut self, piece: Piece) {
         debug_assert!(!self.0.is_full(), "room for every piece");
-        if piece.v1 > piece.v0 && !self.0.is_full() {
-            self.0.push(piece);
+        // Never full (a rise and a plateau per level): one capacity check, no panic path.
+        if piece.v1 > piece.v0 {
+            let _ = self.0.try_push(piece);
         }
     }
     fn len(&self) -> usize {
@@ -95,8 +96,8 @@ fn levels_into(b: &Banded, lo: f64, hi: f64, out: &mut Levels) {
     let mut floor_k: f64 = first.checked_sub(1).map_or(0.0, |k| levels[k].v_top);
     for (top_k, a, j) in bands.chain(std::iter::once((f64::INFINITY, b.top.a_max, b.top.j_max))) {
         let floor = greater(lo, floor_k);
-        if lesser(hi, top_k) > floor && !out.is_full() {
-            out.push(Level {
+        if lesser(hi, top_k) > floor {
+            let _ = out.try_push(Level {
                 floor,
                 top: top_k,
                 a,
@@ -181,21 +182,21 @@ fn backward_from(levels: &[Level], hi: f64, mut g: f64, bwd: &mut Pieces, to_pla
 /// min(F, B) up to `hi` over the common refinement of both: on each stretch both are a² linear
 /// in v, so the smaller is the one below at its ends, the stretch split where they cross.
 fn merge(fwd: &[Piece], bwd: &[Piece], hi: f64, mut take: impl FnMut(&Piece)) {
-    let (mut i, mut k) = (0, bwd.len());
-    while i < fwd.len() && fwd[i].v0 < hi && k > 0 {
-        let fp = &Piece {
-            v1: lesser(fwd[i].v1, hi),
-            ..fwd[i]
-        };
-        let bp = &bwd[k - 1];
-        let (u0, u1) = (greater(fp.v0, bp.v0), lesser(fp.v1, bp.v1));
+    // B from its lowest piece up; each step moves on past the piece (or both) that ends first.
+    let (mut fs, mut bs) = (fwd.iter(), bwd.iter().rev());
+    let (Some(mut f), Some(mut b)) = (fs.next(), bs.next()) else {
+        return;
+    };
+    while f.v0 < hi {
+        let f1 = lesser(f.v1, hi);
+        let (u0, u1) = (greater(f.v0, b.v0), lesser(f1, b.v1));
         if u1 > u0 {
-            let d = |u: f64| (fp.alpha - bp.alpha) + (fp.beta - bp.beta) * u;
+            let d = |u: f64| (f.alpha - b.alpha) + (f.beta - b.beta) * u;
             let (d0, d1) = (d(u0), d(u1));
             let piece = |x0: f64, x1: f64, forward: bool| Piece {
                 v0: x0,
                 v1: x1,
-                ..*(if forward { fp } else { bp })
+                ..*(if forward { f } else { b })
             };
             if (d0 <= 0.0) == (d1 <= 0.0) {
                 take(&piece(u0, u1, d0 + d1 <= 0.0));
@@ -205,15 +206,18 @@ fn merge(fwd: &[Piece], bwd: &[Piece], hi: f64, mut take: impl FnMut(&Piece)) {
                 take(&piece(root, u1, d1 <= 0.0));
             }
         }
-        if fp.v1 <= bp.v1 {
-            i += 1;
-            // Both end here: the next F piece starts at or above bp's end, so the step after
-            // would take nothing and go on to the next B piece.
-            if fp.v1 == bp.v1 {
-                k -= 1;
-            }
-        } else {
-            k -= 1;
+        // Past the piece that ends first, or both where they end together (the next F piece
+        // starts at or above b's end, so the step after would take nothing and go on past b).
+        // At least one moves on, whatever the comparison gives.
+        let f_ends = f1 <= b.v1;
+        let b_ends = !f_ends || f1 == b.v1;
+        if f_ends {
+            let Some(next) = fs.next() else { return };
+            f = next;
+        }
+        if b_ends {
+            let Some(next) = bs.next() else { return };
+            b = next;
         }
     }
 }
