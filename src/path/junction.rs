@@ -538,17 +538,15 @@ pub(super) fn within_tolerance(
     leads: &mut [f64; TRANSITION_SAMPLES + 1],
 ) -> bool {
     let g = Guards::of(h);
-    // From the middle outwards: a cut too long fails first near the apex, where the transition
-    // is farthest from both pieces (the cut search tries several before one keeps it).
-    let half = TRANSITION_SAMPLES / 2;
-    let order = (0..=half).flat_map(|i| [half - i, half + i]).skip(1);
-    let all = order.into_iter().all(|k| {
+    // The moves nearest each half's end of the transition first (the others often need no
+    // distance), found once: the first one's distance is kept (`Leads`).
+    let move_at = |i: usize| before.get(i).unwrap_or_else(|| &after[i - before.len()]);
+    let (n_before, n_after) = (before.len(), after.len());
+    let firsts = [0, TRANSITION_SAMPLES].map(|k| move_at(lead(k, n_before, n_after)));
+    let mut holds_at = |k: usize| {
         let s = g.sample(h, k);
         let near = |mv: &Move| g.holds(mv, &s, mv.source.distance(s.p));
-        // The moves nearest the sample's end of the transition first (the others often need
-        // no distance); the first one's distance is kept (`Leads`).
-        let i = lead(k, before.len(), after.len());
-        let first = before.get(i).unwrap_or_else(|| &after[i - before.len()]);
+        let first = firsts[usize::from(2 * k > TRANSITION_SAMPLES)];
         leads[k] = first.source.distance(s.p);
         g.holds(first, &s, leads[k])
             || if 2 * k <= TRANSITION_SAMPLES {
@@ -556,6 +554,9 @@ pub(super) fn within_tolerance(
             } else {
                 after.iter().chain(before.iter().rev()).skip(1).any(near)
             }
-    });
-    all
+    };
+    // From the middle outwards: a cut too long fails first near the apex, where the transition
+    // is farthest from both pieces (the cut search tries several before one keeps it).
+    let half = TRANSITION_SAMPLES / 2;
+    holds_at(half) && (1..=half).all(|i| holds_at(half - i) && holds_at(half + i))
 }
