@@ -23,7 +23,12 @@ use crate::Vec3;
 /// The distance from each sample of a transition to the move its tolerance check measures
 /// first (`lead`), carried from the cut search to the reported line (source_map.rs), which
 /// needs the same distances; None between two lines (checked in closed form).
+/// `UNMEASURED` where the sample guard was found to hold by a bound alone (`Guards::held`).
 pub(super) type Leads = Option<[f64; TRANSITION_SAMPLES + 1]>;
+
+/// A lead distance not measured: the sample guard holds by a bound of it (below any distance,
+/// so `Guards::by_speed` holds at it too).
+pub(super) const UNMEASURED: f64 = f64::NEG_INFINITY;
 
 /// The move the tolerance check of sample k measures first, the one nearest the sample's end
 /// of the corner, as an index into the `before` moves then the `after` ones.
@@ -93,6 +98,16 @@ impl Guards {
     #[inline(never)]
     pub(super) fn by_growth(&self, mv: &Move, s: &Sample, d: f64) -> bool {
         d <= mv.tolerance - self.growth(mv, s, d)
+    }
+
+    /// The sample guard keeps sample `s` within the tolerance of `mv` by a bound of its
+    /// distance (`Arc::at_angle_at_most`, an arc's without its `atan2` and `hypot`), unmeasured.
+    #[inline]
+    pub(super) fn held(&self, mv: &Move, s: &Sample) -> bool {
+        match &mv.source {
+            Source::Arc(a) => a.at_angle_at_most(s.p, mv.tolerance - self.sample),
+            Source::Line(_) => false,
+        }
     }
 
     /// The sample guard alone keeps the half-steps about a sample at distance `d` from `mv`

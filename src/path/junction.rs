@@ -10,7 +10,7 @@
 mod cost;
 
 use super::chain::{Curve, CurveLimits, Own};
-use super::cover::{lead, Guards, Leads};
+use super::cover::{lead, Guards, Leads, UNMEASURED};
 use super::hermite::{Hermite, Jet};
 use super::slowest_axis;
 use super::smooth::{jet_at, Move, Span};
@@ -546,10 +546,17 @@ pub(super) fn within_tolerance(
     let mut holds_at = |k: usize| {
         let s = g.sample(h, k);
         let near = |mv: &Move| g.holds(mv, &s, mv.source.distance(s.p));
-        let first = firsts[usize::from(2 * k > TRANSITION_SAMPLES)];
+        let second = 2 * k > TRANSITION_SAMPLES;
+        let first = firsts[usize::from(second)];
+        // Where a bound tells that the lead holds, unmeasured (most of an arc's samples: no
+        // `atan2`); the reported line measures it where it needs the value (source_map.rs).
+        if g.held(first, &s) {
+            leads[k] = UNMEASURED;
+            return true;
+        }
         leads[k] = first.source.distance(s.p);
         g.holds(first, &s, leads[k])
-            || if 2 * k <= TRANSITION_SAMPLES {
+            || if !second {
                 before.iter().rev().chain(after).skip(1).any(near)
             } else {
                 after.iter().chain(before.iter().rev()).skip(1).any(near)

@@ -15,7 +15,7 @@
 //!   its foot on the line lies in: the point is within the tolerance of the line, so of that
 //!   move.
 
-use super::cover::{lead, Guards, Leads, Sample};
+use super::cover::{lead, Guards, Leads, Sample, UNMEASURED};
 use super::hermite::Hermite;
 use super::smooth::{programmed, start_of, Move};
 use super::tolerance::{FOOT_BISECTIONS, TRANSITION_SAMPLES};
@@ -86,10 +86,12 @@ fn nearest_onwards(h: &Hermite, ds: &Distances, g: &Guards) -> (u32, Vec<(f64, u
     for k in 0..=TRANSITION_SAMPLES {
         let mut s = Lazy { g, h, k, s: None };
         // The nearest move from `at` on (the first of equals), and the distance to `at`'s.
-        let d0 = ds.of(at, &mut s);
+        // Alone from `at` on, its distance is only held to the tolerance: an unmeasured lead
+        // holds as it did (`UNMEASURED`).
+        let d0 = ds.of(at, &mut s, moves.len() - at == 1);
         let (mut j, mut dj) = (0, d0);
         for i in 1..moves.len() - at {
-            let d = ds.of(at + i, &mut s);
+            let d = ds.of(at + i, &mut s, false);
             if d < dj {
                 (j, dj) = (i, d);
             }
@@ -143,10 +145,15 @@ struct Distances<'a> {
 
 impl Distances<'_> {
     /// The distance from sample `s` to move i: the tolerance check's where it measured it, the
-    /// same value.
-    fn of(&self, i: usize, s: &mut Lazy) -> f64 {
+    /// same value; `UNMEASURED` where it was not and `held_only` (only held to the tolerance).
+    fn of(&self, i: usize, s: &mut Lazy, held_only: bool) -> f64 {
         match self.leads {
-            Some(leads) if i == lead(s.k, self.before, self.moves.len() - self.before) => leads[s.k],
+            Some(leads)
+                if i == lead(s.k, self.before, self.moves.len() - self.before)
+                    && (held_only || leads[s.k] != UNMEASURED) =>
+            {
+                leads[s.k]
+            }
             _ => self.moves[i].source.distance(s.get().p),
         }
     }
