@@ -110,18 +110,17 @@ impl Frame {
     /// The frame of the curve with derivative bound cells `cells` and smallest radius of
     /// curvature `rho` (chord error), its speed never above `v_cap`.
     pub fn of(cells: &[[Vec3; 3]], rho: f64, v_cap: f64, machine: &Machine) -> Frame {
-        Frame::of_bounds(&max_bounds(cells), rho, v_cap, machine)
+        Frame::uncapped(&max_bounds(cells), rho, machine).capped(v_cap)
     }
 
-    /// `of`, given the largest of the cells' bounds (`max_bounds`).
-    pub fn of_bounds(b: &[Vec3; 3], rho: f64, v_cap: f64, machine: &Machine) -> Frame {
-        let v0 = constant_speed_limit(b, machine)
-            .min(chord_error_speed(
-                rho,
-                machine.chord_tolerance,
-                machine.interpolation_period,
-            ))
-            .min(v_cap);
+    /// `of` before its speed is capped (`capped`), given the largest of the cells' bounds
+    /// (`max_bounds`).
+    pub fn uncapped(b: &[Vec3; 3], rho: f64, machine: &Machine) -> Frame {
+        let v0 = constant_speed_limit(b, machine).min(chord_error_speed(
+            rho,
+            machine.chord_tolerance,
+            machine.interpolation_period,
+        ));
         let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
         for (i, ax) in machine.axes.iter().enumerate() {
             if b[0][i] > NEGLIGIBLE {
@@ -136,6 +135,12 @@ impl Frame {
             j_free = j_free.min(j);
         }
         Frame { v0, a_free, j_free }
+    }
+
+    /// The frame with its speed at most `v_cap`.
+    pub fn capped(mut self, v_cap: f64) -> Frame {
+        self.v0 = self.v0.min(v_cap);
+        self
     }
 
     /// `curve_limits` of its curve (`cells`).

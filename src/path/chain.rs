@@ -4,7 +4,7 @@
 //! one curve; the axis acceleration p''·u̇² + p'·ü stays continuous across every joint.
 
 use super::arc::{curve_bands, curve_top_speed, Frame, TopSpeeds};
-use super::hermite::{Hermite, BOUND_PIECES};
+use super::hermite::{Hermite, Unbounded, BOUND_PIECES};
 use super::max_bounds;
 use crate::config::Machine;
 use crate::feed::bands::Bands;
@@ -230,7 +230,7 @@ pub(super) fn piece_limits(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Curv
 /// of that speed all start from.
 fn piece_frame(cells: &[[Vec3; 3]], v_cap: f64, m: &Machine) -> Frame {
     let b = max_bounds(cells);
-    Frame::of_bounds(&b, smallest_radius(&b), v_cap, m)
+    Frame::uncapped(&b, smallest_radius(&b), m).capped(v_cap)
 }
 
 /// `piece_limits` in its `frame`, given what `curve_top_speed` solved for the same cells and
@@ -251,6 +251,8 @@ pub(super) struct Own {
     cells: [[Vec3; 3]; BOUND_PIECES],
     frame: Frame,
     top: Option<TopSpeeds>,
+    /// The curve's speed bound where its frame took it (`of_shape`).
+    sigma: Option<f64>,
 }
 
 impl Own {
@@ -262,15 +264,35 @@ impl Own {
             cells,
             frame,
             top: None,
+            sigma: Some(h.speed_bound()),
         }
     }
 
-    /// `Own::of(h, feed, m).ceiling()` without the cells kept: the frame takes only their
-    /// largest bounds (`derivative_bounds`, the same maxima in the same order).
-    pub(super) fn ceiling_of(h: &Hermite, feed: f64, m: &Machine) -> f64 {
-        let b = h.derivative_bounds();
-        let v_cap = feed / h.speed_bound().max(1.0);
-        Frame::of_bounds(&b, smallest_radius(&b), v_cap, m).ceiling()
+    /// `of` for the curve before its speed bound σ, which only caps the frame's speed: worked out
+    /// where that cap may bind (`capped_frame`), and then kept (`sigma`).
+    pub(super) fn of_shape(shape: &Unbounded, feed: f64, m: &Machine) -> Own {
+        let mut cells = [[[0.0; 3]; 3]; BOUND_PIECES];
+        shape.cells_into(&mut cells);
+        let (frame, sigma) = capped_frame(&max_bounds(&cells), feed, shape, m);
+        Own {
+            cells,
+            frame,
+            top: None,
+            sigma,
+        }
+    }
+
+    /// The curve's speed bound where its frame took it (None where `of_shape` left it out).
+    pub(super) fn sigma(&self) -> Option<f64> {
+        self.sigma
+    }
+
+    /// `Own::of_shape(shape, feed, m).ceiling()` without the cells kept: the frame takes only
+    /// their largest bounds (`derivative_bounds`, the same maxima in the same order).
+    pub(super) fn ceiling_of(shape: &Unbounded, feed: f64, m: &Machine) -> f64 {
+        capped_frame(&shape.derivative_bounds(), feed, shape, m)
+            .0
+            .ceiling()
     }
 
     /// Its limits and bands (`piece_limits`), from its top speed where `speed` solved it.
@@ -293,6 +315,19 @@ impl Own {
     }
 }
 
+/// The frame of a curve's limits (`piece_frame`) from its largest bounds `b`, capped at feed/σ
+/// (σ its speed bound, at least 1), and σ where it was worked out: where even the cap from σ's
+/// ceiling (`Unbounded::speed_ceiling`, no smaller) is above the speed without a cap, σ's own cap
+/// is too, and the frame is the same without it (most cuts the search prunes).
+fn capped_frame(b: &[Vec3; 3], feed: f64, shape: &Unbounded, m: &Machine) -> (Frame, Option<f64>) {
+    let free = Frame::uncapped(b, smallest_radius(b), m);
+    if feed / shape.speed_ceiling().max(1.0) > free.ceiling() {
+        return (free, None);
+    }
+    let sigma = shape.speed_bound();
+    (free.capped(feed / sigma.max(1.0)), Some(sigma))
+}
+
 /// The smallest radius of curvature the cells allow, from their largest bounds (`max_bounds`):
 /// 1/|p''| for the largest |p''|.
 fn smallest_radius(bounds: &[Vec3; 3]) -> f64 {
@@ -301,5 +336,63 @@ fn smallest_radius(bounds: &[Vec3; 3]) -> f64 {
         1.0 / k
     } else {
         f64::INFINITY
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{add, scale};
+    use crate::path::hermite::Jet;
+    use crate::path::testing;
+    use crate::test_rng::unit;
+
+    /// A curve's limits from its shape, before its speed bound (`Own::of_shape`, `ceiling_of`),
+    /// are those from the bounded curve bit for bit, and the speed bound's ceiling is never below
+    /// it: random transitions from nearly straight to reversing, at random feeds and limits.
+    #[test]
+    fn limits_before_the_speed_bound_are_the_same() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut skipped = 0;
+        for _ in 0..2000 {
+            let mut v = |scale: f64| -> Vec3 { std::array::from_fn(|_| scale * (2.0 * unit(&mut s) - 1.0)) };
+            let (d_in, d_out, turn) = (unit_vec(v(1.0)), v(1.0), v(1.0)[0].abs());
+            let d_out = unit_vec(add(d_in, scale(unit_vec(d_out), 2.0 * turn)));
+            let lambda = 1e-4 * (1.0 + 100.0 * turn);
+            let (a, b) = (
+                Jet {
+                    p: [0.0; 3],
+                    d1: d_in,
+                    d2: v(300.0),
+                },
+                Jet {
+                    p: add(scale(d_in, 0.5 * lambda), scale(d_out, 0.5 * lambda)),
+                    d1: d_out,
+                    d2: v(300.0),
+                },
+            );
+            let m = testing::machine(&mut s);
+            let feed = 10f64.powf(-2.0 + 3.0 * unit(&mut s));
+            let shape = Hermite::unbounded(a, b, lambda);
+            let h = shape.bounded();
+            assert!(shape.speed_ceiling() >= h.speed_bound());
+            let mut own = Own::of_shape(&shape, feed, &m);
+            skipped += usize::from(own.sigma().is_none());
+            assert_eq!(shape.bounded_with(own.sigma()), h);
+            let mut bits = Own::of(&h, feed, &m);
+            assert_eq!(own.ceiling().to_bits(), bits.ceiling().to_bits());
+            assert_eq!(own.speed(&m).to_bits(), bits.speed(&m).to_bits());
+            assert_eq!(own.limits(&m), bits.limits(&m));
+            let ceiling = Own::ceiling_of(&shape, feed, &m);
+            assert_eq!(ceiling.to_bits(), bits.ceiling().to_bits());
+        }
+        assert!(
+            skipped > 200 && skipped < 1800,
+            "{skipped} of 2000 without the bound"
+        );
+    }
+
+    fn unit_vec(x: Vec3) -> Vec3 {
+        scale(x, 1.0 / norm(x))
     }
 }

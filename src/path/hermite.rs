@@ -18,6 +18,24 @@ use serde::{Deserialize, Serialize};
 pub(super) const BOUND_PIECES: usize = 8;
 /// Sub-intervals of the parameter speed's bound.
 const SPEED_PIECES: usize = 8;
+/// C(n, k) for n, k ≤ 8 (whole numbers, exact), of the Taylor coefficients of |p'|² (degree 8).
+const BINOMIAL: [[f64; 9]; 9] = {
+    let mut c = [[0.0; 9]; 9];
+    let mut n = 0;
+    while n < 9 {
+        c[n][0] = 1.0;
+        let mut k = 1;
+        while k <= n {
+            c[n][k] = c[n - 1][k - 1] + c[n - 1][k];
+            k += 1;
+        }
+        n += 1;
+    }
+    c
+};
+/// Relative margin of `Unbounded::speed_ceiling` over the speed bound: far above the rounding of
+/// either (`BOUND_ROUNDING` and a few hundred roundings of 2⁻⁵³).
+const SPEED_CEILING_MARGIN: f64 = 1e-9;
 
 /// p(u) = start + Σ_{k=1..5} c_k·u^k for u ∈ [0, lambda]; p(lambda) is `end` exactly.
 /// Restored from its coefficients (`Coefficients`); the speed bound is derived again then.
@@ -51,7 +69,8 @@ impl From<Coefficients> for Hermite {
 }
 
 /// A curve as `Hermite::new` builds it, before its speed bound: its points and derivatives only.
-/// The fit checks a span's chords first, and the curves they reject need no bound.
+/// The fit checks a span's chords first, and the curves they reject need no bound; the corner
+/// search needs it only where it may cap a cut's speed (`chain::Own::of_shape`).
 pub(super) struct Unbounded(Hermite);
 
 impl Unbounded {
@@ -64,10 +83,48 @@ impl Unbounded {
     }
 
     /// The curve with its speed bound (`Hermite::speed_bound`).
-    pub(super) fn bounded(self) -> Hermite {
+    pub(super) fn bounded(&self) -> Hermite {
+        self.bounded_with(None)
+    }
+
+    /// `bounded`, with the speed bound where it was worked out already (`speed_bound`).
+    pub(super) fn bounded_with(&self, speed: Option<f64>) -> Hermite {
         let mut h = self.0;
-        h.speed = h.speed_bound_of_coefficients();
+        h.speed = speed.unwrap_or_else(|| h.speed_bound_of_coefficients());
         h
+    }
+
+    /// `Hermite::speed_bound` of the curve.
+    pub(super) fn speed_bound(&self) -> f64 {
+        self.0.speed_bound_of_coefficients()
+    }
+
+    /// `Hermite::cells_into` (the cells take no speed bound).
+    pub(super) fn cells_into(&self, out: &mut [[Vec3; 3]; BOUND_PIECES]) {
+        self.0.cells_into(out);
+    }
+
+    /// `Hermite::derivative_bounds`.
+    pub(super) fn derivative_bounds(&self) -> [Vec3; 3] {
+        self.0.derivative_bounds()
+    }
+
+    /// A bound of the speed bound from above, without its Taylor sums: with p' = Σ_k a_k·u^k,
+    /// each piece's sum is at most Σ_n |q_n|·(m + r)^n (the binomial theorem), m + r ≤ λ, and
+    /// |q_n| ≤ Σ_{k+l=n} Σ_i |a_k,i|·|a_l,i|: so the bound's square is at most
+    /// Σ_i (Σ_k |a_k,i|·λ^k)², up to rounding (`SPEED_CEILING_MARGIN`).
+    pub(super) fn speed_ceiling(&self) -> f64 {
+        let h = &self.0;
+        let mut square = 0.0;
+        for i in 0..3 {
+            let (mut axis, mut lk) = (0.0, 1.0);
+            for (k, c) in h.c.iter().enumerate() {
+                axis += (k + 1) as f64 * c[i].abs() * lk;
+                lk *= h.lambda;
+            }
+            square += axis * axis;
+        }
+        square.sqrt() * (1.0 + SPEED_CEILING_MARGIN)
     }
 }
 
@@ -292,19 +349,18 @@ impl Hermite {
         let mut bound: f64 = 0.0;
         for piece in 0..SPEED_PIECES {
             let m = (2 * piece + 1) as f64 * r;
-            // Taylor coefficients at m: q^(k)(m)/k! = Σ_{n ≥ k} C(n, k)·q_n·m^(n−k).
+            // Taylor coefficients at m: q^(k)(m)/k! = Σ_{n ≥ k} C(n, k)·q_n·m^(n−k), the powers of
+            // m by repeated products (the same for every k).
+            let mut mp = [1.0f64; 9];
+            for j in 1..9 {
+                mp[j] = mp[j - 1] * m;
+            }
             let mut sum = 0.0;
             let mut rk = 1.0;
             for k in 0..9 {
                 let mut t = 0.0;
-                let mut binom = 1.0;
-                let mut mp = 1.0;
-                for (n, qn) in q.iter().enumerate().skip(k) {
-                    if n > k {
-                        binom = binom * n as f64 / (n - k) as f64;
-                        mp *= m;
-                    }
-                    t += binom * qn * mp;
+                for n in k..9 {
+                    t += BINOMIAL[n][k] * q[n] * mp[n - k];
                 }
                 sum += t.abs() * rk;
                 rk *= r;

@@ -11,7 +11,7 @@ mod cost;
 
 use super::chain::{Curve, CurveLimits, Own};
 use super::cover::{lead, Guards, Leads, UNMEASURED};
-use super::hermite::{Hermite, Jet};
+use super::hermite::{Hermite, Jet, Unbounded};
 use super::slowest_axis;
 use super::smooth::{jet_at, Move, Span};
 use super::tolerance::{MIN_LENGTH, REVERSAL_COS, TRANSITION_SAMPLES};
@@ -64,12 +64,12 @@ pub(super) fn corner_speed(before: &Line, after: &Line, tol: f64, feed: f64, m: 
         d1: t,
         d2: [0.0; 3],
     };
-    let h = Hermite::new(
+    let shape = Hermite::unbounded(
         jet(sub(corner, scale(t_in, d)), t_in),
         jet(add(corner, scale(t_out, d)), t_out),
         2.0 * d,
     );
-    Own::of(&h, feed, m).speed(m)
+    Own::of_shape(&shape, feed, m).speed(m)
 }
 
 /// The ceiling of the speed of the transition between `held` and `next` as the search starts
@@ -93,7 +93,7 @@ pub(super) fn corner_ceiling(held: &Span, next: &Span, shared: bool, m: &Machine
         return 0.0;
     }
     let feed = held.last.feed.min(next.first.feed);
-    Own::ceiling_of(&cut_curve(held, next, d, 1.0), feed, m)
+    Own::ceiling_of(&cut_shape(held, next, d, 1.0), feed, m)
 }
 
 /// The corner between `held` and `next`: how much it turns, |t_out − t_in|, and its reach, the
@@ -112,11 +112,11 @@ fn corner(held: &Span, next: &Span) -> Option<(f64, f64)> {
 }
 
 /// The transition for cut `d` on both sides of the corner between `held` and `next`, with
-/// parameter speed 1 at both ends: λ is 2·share times the cut.
-fn cut_curve(held: &Span, next: &Span, d: f64, share: f64) -> Hermite {
+/// parameter speed 1 at both ends: λ is 2·share times the cut (before its speed bound).
+fn cut_shape(held: &Span, next: &Span, d: f64, share: f64) -> Unbounded {
     let a = jet_at(&held.piece, held.piece.length() - d);
     let b = jet_at(&next.piece, d);
-    Hermite::new(a, b, 2.0 * share * d)
+    Hermite::unbounded(a, b, 2.0 * share * d)
 }
 
 /// The transition between `held` and `next`: the cuts on both sides, the curve, its limits and
@@ -324,6 +324,12 @@ impl Search<'_> {
     /// start of the search, and that start; an index below it stands for the start itself) and
     /// its curve for λ = 2·share·d, if longer than `MIN_LENGTH`.
     fn at(&self, k: i32, first: (i32, f64), share: f64) -> Option<(f64, Hermite)> {
+        self.shape_at(k, first, share)
+            .map(|(d, shape)| (d, shape.bounded()))
+    }
+
+    /// `at` before the curve's speed bound.
+    fn shape_at(&self, k: i32, first: (i32, f64), share: f64) -> Option<(f64, Unbounded)> {
         let d = if k < first.0 {
             first.1
         } else {
@@ -332,7 +338,7 @@ impl Search<'_> {
         if d.is_nan() || d <= MIN_LENGTH {
             return None;
         }
-        Some((d, cut_curve(self.held, self.next, d, share)))
+        Some((d, cut_shape(self.held, self.next, d, share)))
     }
 
     /// Whether the curve `h` of cut `d` is within the tolerance, its samples' `Leads` written to
@@ -382,7 +388,7 @@ impl Search<'_> {
         if d.is_nan() || d <= MIN_LENGTH {
             return false;
         }
-        let h = cut_curve(self.held, self.next, d, share);
+        let h = cut_shape(self.held, self.next, d, share);
         let v_ceiling = self.speed(d, Own::ceiling_of(&h, self.feed, self.m), &mut [None; 2]);
         local_cost(d, h.length(), v_ceiling, self.sides) < best.cost - SAVING
     }
@@ -474,8 +480,9 @@ impl Search<'_> {
         // The cut at index k, into `best`, if it is within the tolerance and cheaper than `best`
         // by `SAVING` (in place: a returned cut was copied on each way out).
         let try_at = |k: i32, best: &mut Found| {
-            let (d, h) = self.at(k, first, share)?;
-            let mut own = Own::of(&h, self.feed, m);
+            // The curve's speed bound only where its frame needs it, or once the cut is not pruned.
+            let (d, shape) = self.shape_at(k, first, share)?;
+            let mut own = Own::of_shape(&shape, self.feed, m);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
             let mut solved = [None; 2];
@@ -483,13 +490,14 @@ impl Search<'_> {
             let prune = best.cost - SAVING + PRUNE_MARGIN * best.cost.abs();
             // Most of them are pruned by a bound of that cost from below (`cost_floor`), without
             // the banded ramps' solves.
-            if cost_floor(d, h.length(), v_ceiling, self.sides).is_some_and(|c| c >= prune) {
+            if cost_floor(d, shape.length(), v_ceiling, self.sides).is_some_and(|c| c >= prune) {
                 return None;
             }
-            let at_ceiling = local_cost(d, h.length(), v_ceiling, self.sides);
+            let at_ceiling = local_cost(d, shape.length(), v_ceiling, self.sides);
             if at_ceiling >= prune {
                 return None;
             }
+            let h = shape.bounded_with(own.sigma());
             let v_max = own.speed(m);
             // Where the neighbours cap both speeds alike, the cost is the one just found.
             let known = Some((v_ceiling, at_ceiling));
