@@ -453,3 +453,27 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.03088, 0.10722]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 4): before the program's end, the corner between
+/// a 0.21 mm arc and a 0.96 mm one stops at the smaller tolerance; at 1.56 times it, a 0.19 mm
+/// transition ran at 3.8 mm/s. The junction's cost ran the arc after it at the arc before's
+/// 7.9 mm/s (as if joined in one chain), where its block to rest, apart, reaches 16.6: it counted
+/// 25 ms gained from the transition against a stop where the plan gains 16, and the transition
+/// was 7 ms slower than the stop (0.4781 s against 0.4674 s). A side whose far end is rest is
+/// costed at its own speed (path/junction/cost.rs, `Side::beside`).
+#[test]
+fn a_larger_tolerance_does_not_cost_a_side_before_a_stop_at_its_slower_neighbour_speed() {
+    let axes = [
+        [1520.0, 524.5, 6.256e6],
+        [7541.0, 2063.0, 17670.0],
+        [1854.0, 1395.0, 8.825e8],
+    ];
+    let program = "G21 G90 G17 G64 F2463.6
+G3 X1.2925 Y1.7248 Z0.0000 I0.0009 J1.3460
+G1 X1.3180 Y1.2333 Z-0.0677
+G3 X1.4027 Y1.0352 Z-0.0939 I0.3204 J0.0198
+G2 X2.1248 Y1.5718 Z0.0561 I0.7744 J-0.2878
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.01926, 0.03007]);
+}

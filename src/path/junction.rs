@@ -172,7 +172,7 @@ pub(super) fn transition(
             v,
             at_start: k == 0,
             ramp: match rises[k] {
-                Some(rise) if v < side.v => rise.time_distance(side.v),
+                Some(rise) if v < side.beside(v) => rise.time_distance(side.beside(v)),
                 _ => (0.0, 0.0),
             },
         })
