@@ -116,11 +116,8 @@ impl Frame {
     /// `of` before its speed is capped (`capped`), given the largest of the cells' bounds
     /// (`max_bounds`).
     pub fn uncapped(b: &[Vec3; 3], rho: f64, machine: &Machine) -> Frame {
-        let v0 = constant_speed_limit(b, machine).min(chord_error_speed(
-            rho,
-            machine.chord_tolerance,
-            machine.interpolation_period,
-        ));
+        let chord = chord_error_speed(rho, machine.chord_tolerance, machine.interpolation_period);
+        let v0 = constant_speed_limit(b, machine).min(chord);
         let (mut a_free, mut j_free) = (f64::INFINITY, f64::INFINITY);
         for (i, ax) in machine.axes.iter().enumerate() {
             if b[0][i] > NEGLIGIBLE {
