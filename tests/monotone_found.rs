@@ -477,3 +477,26 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.01926, 0.03007]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 6, the worst then): at 3.62 times the tolerance,
+/// a 0.05 mm line and the 3.05 mm line after it, from rest, were fitted as one curve whose end
+/// continues the circle through the hook, so its corner with the line after it was
+/// sharper: the 11.8 mm line started at 17.4 mm/s instead of 23.0 and ran 18 ms longer on X's jerk of
+/// 1854 mm/s³ (0.8038 s against 0.7823 s). A curve that ends its run is not kept where, to its
+/// corner with the line after and that line on to rest, it is slower than its moves
+/// (path/fit.rs, `slower_to_exit`).
+#[test]
+fn a_larger_tolerance_does_not_fit_a_hook_into_a_curve_that_slows_the_next_corner() {
+    let axes = [
+        [14037.83, 1032.67, 1854.14],
+        [1644.77, 321.29, 142881.44],
+        [10629.25, 424.11, 1469105.83],
+    ];
+    let program = "G21 G90 G17 G64 F13235.6
+G1 X0.0497 Y0.0080 Z0.0103
+G1 X2.7982 Y1.0653 Z0.8173
+G1 X13.3333 Y5.1180 Z-2.5392
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0838, 0.3034]);
+}

@@ -6,25 +6,30 @@
 //! and it is not surely slower than its moves (`slower_than_stops`) nor, over a single line,
 //! slower than that line run between the transitions at its corners (`slower_than_its_line`),
 //! nor, over several moves or fitted from rest, slower from rest to rest than its moves
-//! (`slower_from_rest`); otherwise it is split at a vertex, down to the programmed line.
+//! (`slower_from_rest`), nor, ending the run, slower than they are to its corner with the line
+//! after it and that line on (`slower_to_exit`); otherwise it is split at a vertex, down to the
+//! programmed line. Those times are in fit/baseline.rs.
 //!
 //! Moves that continue one line (`continues`: a G64 Q line split at its merged vertices for the
 //! blocks it reports, CAM output that splits a straight cut) are one line here: their inner
 //! vertices are neither knots nor split points, and a span that does not fit over them is the
 //! line itself, whose junctions the transitions then cut along its whole length.
 
-use super::chain::{Curve, CurveLimits, Own, Piece};
+mod baseline;
+
+use super::chain::{Curve, Own, Piece};
 use super::hermite::{bezier, Hermite, Jet, Unbounded};
 use super::junction::corner_speed;
 use super::smooth::{end_of, start_of, Move, SmoothBuilder, Span, TIGHTER_RAMP};
 use super::tolerance::{COLLINEAR_EPS, COLLINEAR_SIN2, KNOT_SLACK};
 use super::PathBlock;
-use super::{constant_speed_limit, line_limits};
 use crate::config::Machine;
-use crate::feed::bands::Banded;
-use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
 use crate::geometry::{add, cross, distance_to_segment, dot, norm, scale, sub, unit, Line, Source};
 use crate::Vec3;
+use baseline::{
+    corners_time, its_line_time, slower_from_rest, slower_than_its_line, slower_than_stops, slower_to_exit,
+    stops_time,
+};
 use std::cell::Cell;
 
 /// Parts of each chord's range whose control points are checked.
@@ -161,8 +166,14 @@ impl Vertices {
 impl SmoothBuilder {
     /// Fit the run with Hermite spans between knots about `KNOT_LENGTH` apart; with
     /// `keep_tail`, the last span stays in the run (its first knot's jet carried) for the moves
-    /// still to come.
-    pub(super) fn flush_run(&mut self, keep_tail: bool, m: &Machine, out: &mut Vec<PathBlock>) {
+    /// still to come. `after`: the move after the run, past a corner, where it is known.
+    pub(super) fn flush_run(
+        &mut self,
+        keep_tail: bool,
+        after: Option<&Move>,
+        m: &Machine,
+        out: &mut Vec<PathBlock>,
+    ) {
         let run = std::mem::take(&mut self.run);
         let jet0 = self.run_jet.take();
         let Some(first) = run.first().copied() else { return };
@@ -213,6 +224,7 @@ impl SmoothBuilder {
                 vertices: &vertices,
                 from: knots[j],
                 to: knots[j + 1],
+                after: after.filter(|_| !keep_tail),
             };
             self.fit(span, jets[j], jets[j + 1], m, out);
         }
@@ -265,9 +277,9 @@ impl SmoothBuilder {
                 return None;
             }
             let class = own.speed(m);
-            let mut stops = stops_time(moves, m);
+            let mut stops = stops_time(moves, 0.0, m);
             if alone {
-                stops = stops.min(corners_time(span, class, m));
+                stops = stops.min(corners_time(span, class, 0.0, m));
             }
             let line = || inner.or_else(|| its_line_time(span, Some(class), m));
             if slower_than_stops(h.length(), class, stops)
@@ -277,7 +289,10 @@ impl SmoothBuilder {
             }
             let own = own.limits(m);
             let from_rest = if rest_to_rest { stops } else { TIGHTER_RAMP * stops };
-            (!slower_from_rest(h.length(), &own, from_rest)).then_some(own)
+            if slower_from_rest(h.length(), &own, 0.0, from_rest) {
+                return None;
+            }
+            (!slower_to_exit(span, h, &own, [rest_to_rest, alone], m)).then_some(own)
         };
         let fitted = within_chords(&shape, moves).then(|| shape.bounded());
         if let Some((h, own)) = fitted.and_then(|h| Some((h, kept(&h)?))) {
@@ -295,150 +310,6 @@ impl SmoothBuilder {
     }
 }
 
-/// Whether a curve of `length` and top speed `class` over one programmed line is slower than
-/// that line run between the transitions at its corners, whose time is `line`
-/// (`its_line_time`): the curve's time at its top speed is above the line's.
-fn slower_than_its_line(length: f64, class: f64, line: f64) -> bool {
-    length > class * line
-}
-
-/// Over one programmed line, the time of its block from one corner's speed to the other's,
-/// within its feed and limits: the speeds of the transitions at its corners where they lie
-/// within the run, else the curve's top speed `class` (`None` where that is not solved yet).
-/// `None` over several moves.
-fn its_line_time(span: Fit, class: Option<f64>, m: &Machine) -> Option<f64> {
-    if span.to - span.from != 1 {
-        return None;
-    }
-    let corner = |k: usize| {
-        if k >= 1 && k < span.run.len() {
-            Some(span.vertices.corner_speed(span.run, k, m))
-        } else {
-            class
-        }
-    };
-    Some(line_time(
-        &span.run[span.from],
-        corner(span.from)?,
-        corner(span.to)?,
-        m,
-    ))
-}
-
-/// Time of `moves` each run from rest to rest at its feed within its line's limits: a bound on
-/// the lines' time, corners and all. The tiny moves a line took (micro.rs) count as they were
-/// programmed, so that a larger tolerance, which lets a line take more, does not lower it: a
-/// 3 µm move before an arc, taken at 3.5 times the tolerance, left the baseline of the curve
-/// over the moves before it without its stop: the curve was not kept, and the program ran 2.3 %
-/// longer through the moves' sharp corner into the arc (tests/monotone_found.rs).
-fn stops_time(moves: &[Move], m: &Machine) -> f64 {
-    moves
-        .iter()
-        .map(|mv| line_time(mv, 0.0, 0.0, m) + absorbed_time(mv, m))
-        .sum()
-}
-
-/// The tiny moves `mv` took, from rest to rest along it as one line: what they add to the
-/// moves' stops as programmed.
-fn absorbed_time(mv: &Move, m: &Machine) -> f64 {
-    if mv.absorbed <= 0.0 {
-        return 0.0;
-    }
-    let l = line_of(mv);
-    let end = add(l.start, scale(l.direction(), mv.absorbed));
-    let tiny = Move {
-        source: Source::Line(Line { start: l.start, end }),
-        ..*mv
-    };
-    line_time(&tiny, 0.0, 0.0, m)
-}
-
-/// Time of the span's moves from rest to rest through their corners: each corner at its
-/// transition's ceiling (`corner_speed`) where that is at least `class`, else a stop (a slower
-/// transition's own ramps are not counted); each line within what it reaches from the speed
-/// before it and to the speed after (a pass forward and one back).
-fn corners_time(span: Fit, class: f64, m: &Machine) -> f64 {
-    let moves = &span.run[span.from..span.to];
-    let lines: Vec<Line> = moves.iter().map(line_of).collect();
-    let limits: Vec<Limits> = lines.iter().map(|l| line_limits(l.direction(), m)).collect();
-    let n = moves.len();
-    let mut v = vec![0.0; n + 1];
-    for i in 1..n {
-        let c = span.vertices.corner_speed(span.run, span.from + i, m);
-        let reach = scurve7::max_exit(lines[i - 1].length(), v[i - 1], &limits[i - 1]);
-        v[i] = if c >= class {
-            c.min(line_speed(&moves[i - 1], m))
-                .min(line_speed(&moves[i], m))
-                .min(reach)
-        } else {
-            0.0
-        };
-    }
-    for i in (1..n).rev() {
-        v[i] = v[i].min(scurve7::max_entry(lines[i].length(), v[i + 1], &limits[i]));
-    }
-    (0..n).map(|i| line_time(&moves[i], v[i], v[i + 1], m)).sum()
-}
-
-/// Whether a curve of `length` and top speed `class` is surely slower than its moves, whose
-/// `stops_time` is `stops`: its time at that speed above theirs. A curve over a long move and a
-/// short hook runs the whole move at the hook's speed (2.46 mm at 11 mm/s, where the line alone
-/// runs at 109).
-fn slower_than_stops(length: f64, class: f64, stops: f64) -> bool {
-    length > class * stops
-}
-
-/// Whether a curve of `length` within its limits `own` is slower from rest to rest than its
-/// moves, whose `stops_time` is `stops` (as `slower_than_stops`, with the curve's ramps: a curve
-/// over a bend in a low-jerk axis may not reach its top speed in its length). Asked of every
-/// curve over several moves since a span may use the whole tolerance: a 2.46 mm line and the
-/// 0.26 mm hook before it, fitted as one curve at 33 mm/s whose top band leaves 0.4 mm/s², ran
-/// 0.36 s from rest to rest against its moves' 0.27 s (tests/monotone_found.rs). Over one line,
-/// against `TIGHTER_RAMP` times its line's: that 2.46 mm line, fitted alone once the hook after
-/// it was taken into it (micro.rs), had a top speed of 32 mm/s but ran at 12 where the line
-/// reaches 35.
-fn slower_from_rest(length: f64, own: &CurveLimits, stops: f64) -> bool {
-    // Planned within its tightest pair throughout, the curve takes at least as long as within
-    // its bands (each allows that pair): where even that is not slower, they need not be planned.
-    let tightest = scurve7::plan(&BlockRequest {
-        length,
-        v_in: 0.0,
-        v_out: 0.0,
-        v_feed: own.class,
-        limits: own.bands.pair_range(&own.limits).0,
-    });
-    if tightest.duration() <= stops {
-        return false;
-    }
-    let b = Banded {
-        kind: ProfileKind::Scurve7,
-        top: &own.limits,
-        bands: &own.bands,
-    };
-    let curve = scurve7_banded::plan_time(&b, length, 0.0, 0.0, own.class).0;
-    curve > stops
-}
-
-/// Time of the line of `mv` as one block from `v_in` to `v_out`, each at most its own speed
-/// (its feed and eq. 11), within its axis limits.
-fn line_time(mv: &Move, v_in: f64, v_out: f64, m: &Machine) -> f64 {
-    let l = line_of(mv);
-    let v_feed = line_speed(mv, m);
-    scurve7::plan(&BlockRequest {
-        length: l.length(),
-        v_in: v_in.min(v_feed),
-        v_out: v_out.min(v_feed),
-        v_feed,
-        limits: line_limits(l.direction(), m),
-    })
-    .duration()
-}
-
-/// The own speed of the line of `mv`: its feed, within eq. 11.
-fn line_speed(mv: &Move, m: &Machine) -> f64 {
-    constant_speed_limit(&Curve::Line(line_of(mv)).derivative_bounds(), m).min(mv.feed)
-}
-
 /// The moves `from` … `to` of a run, being fitted.
 #[derive(Clone, Copy)]
 struct Fit<'a> {
@@ -446,6 +317,8 @@ struct Fit<'a> {
     vertices: &'a Vertices,
     from: usize,
     to: usize,
+    /// The move after the run, past a corner, where it is known.
+    after: Option<&'a Move>,
 }
 
 fn line_of(mv: &Move) -> Line {

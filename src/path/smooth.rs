@@ -235,12 +235,12 @@ impl SmoothBuilder {
         if let Some(last) = self.run.last().copied() {
             if smooth_vertex(&last, &mv) {
                 if self.run.len() >= RUN_MAX {
-                    self.flush_run(true, m, out);
+                    self.flush_run(true, None, m, out);
                 }
             } else if last.exact || mv.exact {
                 self.stop(m, out);
             } else {
-                self.flush_run(false, m, out);
+                self.flush_run(false, Some(&mv), m, out);
             }
         }
         self.run.push(mv);
@@ -270,7 +270,7 @@ impl SmoothBuilder {
     /// Stop at the end of everything received (dwell, M0, program end, an exact-stop move):
     /// the waiting span ends at rest.
     pub fn stop(&mut self, m: &Machine, out: &mut Vec<PathBlock>) {
-        self.flush_run(false, m, out);
+        self.flush_run(false, None, m, out);
         if let Some(mut last) = self.waiting.take() {
             last.exit = Some(0.0);
             self.join(last, m, out);
