@@ -480,11 +480,11 @@ M30
 
 /// A case `tolerance_failure_rate` found (seed 6, the worst then): at 3.62 times the tolerance,
 /// a 0.05 mm line and the 3.05 mm line after it, from rest, were fitted as one curve whose end
-/// continues the circle through the hook, so its corner with the line after it was
-/// sharper: the 11.8 mm line started at 17.4 mm/s instead of 23.0 and ran 18 ms longer on X's jerk of
+/// continues the circle through the hook, so its corner with the 11.8 mm line after it was
+/// sharper: that line started at 17.4 mm/s instead of 23.0 and ran 18 ms longer on X's jerk of
 /// 1854 mm/s³ (0.8038 s against 0.7823 s). A curve that ends its run is not kept where, to its
 /// corner with the line after and that line on to rest, it is slower than its moves
-/// (path/fit.rs, `slower_to_exit`).
+/// (path/fit/baseline.rs, `slower_to_exit`).
 #[test]
 fn a_larger_tolerance_does_not_fit_a_hook_into_a_curve_that_slows_the_next_corner() {
     let axes = [
