@@ -44,11 +44,11 @@ pub(super) fn its_line_time(span: Fit, class: Option<f64>, m: &Machine) -> Optio
 }
 
 /// Time of `moves` each run from rest to rest at its feed within its line's limits (the last to
-/// `v_end`): a bound on the lines' time, corners and all. The tiny moves a line took (micro.rs) count as they were
-/// programmed, so that a larger tolerance, which lets a line take more, does not lower it: a
-/// 3 µm move before an arc, taken at 3.5 times the tolerance, left the baseline of the curve
-/// over the moves before it without its stop: the curve was not kept, and the program ran 2.3 %
-/// longer through the moves' sharp corner into the arc (tests/monotone_found.rs).
+/// `v_end`): a bound on the lines' time, corners and all. The tiny moves a line took (micro.rs)
+/// count as they were programmed, so that a larger tolerance, which lets a line take more, does not
+/// lower it: a 3 µm move before an arc, taken at 3.5 times the tolerance, left the baseline of the
+/// curve over the moves before it without its stop: the curve was not kept, and the program ran
+/// 2.3 % longer through the moves' sharp corner into the arc (tests/monotone_found.rs).
 pub(super) fn stops_time(moves: &[Move], v_end: f64, m: &Machine) -> f64 {
     let n = moves.len();
     let end = |i: usize| if i + 1 == n { v_end } else { 0.0 };
@@ -172,14 +172,13 @@ pub(super) fn slower_than_stops(length: f64, class: f64, stops: f64) -> bool {
 }
 
 /// Whether a curve of `length` within its limits `own` is slower from rest to rest (to `v_out`)
-/// than its moves, whose `stops_time` is `stops` (as `slower_than_stops`, with the curve's ramps: a curve
-/// over a bend in a low-jerk axis may not reach its top speed in its length). Asked of every
-/// curve over several moves since a span may use the whole tolerance: a 2.46 mm line and the
-/// 0.26 mm hook before it, fitted as one curve at 33 mm/s whose top band leaves 0.4 mm/s², ran
-/// 0.36 s from rest to rest against its moves' 0.27 s (tests/monotone_found.rs). Over one line,
-/// against `TIGHTER_RAMP` times its line's: that 2.46 mm line, fitted alone once the hook after
-/// it was taken into it (micro.rs), had a top speed of 32 mm/s but ran at 12 where the line
-/// reaches 35.
+/// than its moves, whose `stops_time` is `stops` (as `slower_than_stops`, with the curve's ramps: a
+/// curve over a bend in a low-jerk axis may not reach its top speed in its length). Asked of every
+/// curve over several moves since a span may use the whole tolerance: a 2.46 mm line and the 0.26
+/// mm hook before it, fitted as one curve at 33 mm/s whose top band leaves 0.4 mm/s², ran 0.36 s
+/// from rest to rest against its moves' 0.27 s (tests/monotone_found.rs). Over one line, against
+/// `TIGHTER_RAMP` times its line's: that 2.46 mm line, fitted alone once the hook after it was
+/// taken into it (micro.rs), had a top speed of 32 mm/s but ran at 12 where the line reaches 35.
 pub(super) fn slower_from_rest(length: f64, own: &CurveLimits, v_out: f64, stops: f64) -> bool {
     // Planned within its tightest pair throughout, the curve takes at least as long as within
     // its bands (each allows that pair): where even that is not slower, they need not be planned.
