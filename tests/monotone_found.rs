@@ -500,3 +500,27 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0838, 0.3034]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 1): at 1.58 times the tolerance, three nearly
+/// collinear lines of 0.82, 1.19 and 4.68 mm after an arc, ending the program, were fitted as one
+/// curve at 25.65 mm/s (the feed over its parameter-speed bound) whose top band has 117 m/s³ of
+/// jerk where the lines have 139–210: the lines pass their corners at 25.70 mm/s, so the curve
+/// gained nothing there and ramped to rest more slowly (0.3315 s against 0.3280 s). A curve
+/// that ends its run before a stop, over moves whose corners all pass at its top speed, is
+/// compared with them through those corners (path/fit.rs, `Fit::passes_to_stop`).
+#[test]
+fn a_larger_tolerance_does_not_fit_lines_that_pass_their_corners_as_a_curve_that_stops_slower() {
+    let axes = [
+        [3881.87, 875.11, 204827.82],
+        [1067.27, 500.41, 411180.17],
+        [6059.18, 461.68, 39334.15],
+    ];
+    let program = "G21 G90 G17 G64 F1541.9
+G3 X-0.0110 Y0.0509 Z0.0025 I0.0000 J0.0267
+G1 X-0.7770 Y-0.1042 Z0.2324
+G1 X-1.9111 Y-0.3339 Z0.4888
+G1 X-6.4150 Y-1.2466 Z1.3636
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0863, 0.1363]);
+}

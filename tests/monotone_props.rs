@@ -47,7 +47,8 @@
 //! the worst ×1.0325; a higher limit: 3); a whole run fitted from rest is compared with its
 //! lines through the corners it passes at its top speed (→ 55, the worst ×1.0275); a curve
 //! that ends its run is also compared with its lines to the corner after it and the line after
-//! that (→ 46, the worst ×1.0147).
+//! that (→ 46, the worst ×1.0147); moves that end a run before a stop and pass their corners
+//! at a curve's speed are compared with it through them (→ 45).
 //!
 //! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
 //! every lengthened case; the cases kept from them are in tests/monotone_found.rs.
