@@ -180,8 +180,10 @@ pub(super) fn slower_than_stops(length: f64, class: f64, stops: f64) -> bool {
 /// `TIGHTER_RAMP` times its line's: that 2.46 mm line, fitted alone once the hook after it was
 /// taken into it (micro.rs), had a top speed of 32 mm/s but ran at 12 where the line reaches 35.
 pub(super) fn slower_from_rest(length: f64, own: &CurveLimits, v_out: f64, stops: f64) -> bool {
-    // Planned within its tightest pair throughout, the curve takes at least as long as within
-    // its bands (each allows that pair): where even that is not slower, they need not be planned.
+    let v_out = v_out.min(own.class);
+    // Planned within its tightest pair throughout, to the same end speed, the curve takes at
+    // least as long as within its bands (each allows that pair): where even that is not slower,
+    // they need not be planned.
     let tightest = scurve7::plan(&BlockRequest {
         length,
         v_in: 0.0,
@@ -197,7 +199,7 @@ pub(super) fn slower_from_rest(length: f64, own: &CurveLimits, v_out: f64, stops
         top: &own.limits,
         bands: &own.bands,
     };
-    let curve = scurve7_banded::plan_time(&b, length, 0.0, v_out.min(own.class), own.class).0;
+    let curve = scurve7_banded::plan_time(&b, length, 0.0, v_out, own.class).0;
     curve > stops
 }
 
