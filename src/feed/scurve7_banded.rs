@@ -368,13 +368,18 @@ fn duration(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end:
     (total, t_up)
 }
 
+/// Phases a ramp's list holds before it grows (`build`): 1 kB of (τ, jerk) pairs.
+const RAMP_PHASES: usize = 64;
+
 fn build(b: &Banded, kept: &[&Rise], length: f64, v_in: f64, v_c: f64, v_end: f64) -> Scurve7Banded {
     // The drop is the rise v_end → v_c played backwards: the same phases in reverse order. Each
     // ramp's distance is summed on the way, as `rise_time_distance` sums it (no pieces when the
     // ramp is none: its distance is 0 either way).
     let ramp = |from: f64| {
-        // At most a rise and a plateau per band, each cut once where the envelopes cross.
-        let (mut phases, mut s) = (Vec::with_capacity(4 * (MAX_BANDS + 1)), 0.0);
+        // Room for a rise and a plateau per band, each cut once where the envelopes cross (the
+        // list grows past that). Within 1 kB, as glibc's thread cache takes it: 1088 bytes, the
+        // 4 · (MAX_BANDS + 1) pairs, went to its slower bins.
+        let (mut phases, mut s) = (Vec::with_capacity(RAMP_PHASES), 0.0);
         ramp_pieces(b, kept, from, v_c, |p| {
             let (tau, j, ds) = p.run();
             phases.push((tau, j));
