@@ -69,22 +69,22 @@ impl Budget<'_> {
         self.a_min * (1.0 - SHARE_SLACK)
     }
 
-    /// At each speed v of `v` (each ≥ 0): the largest tangential acceleration the centripetal
-    /// terms leave (at most `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk left with no
-    /// tangential acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|. All speeds in
-    /// one pass over the cells (the inner loop over speeds runs in SIMD lanes; each value is the
-    /// scalar one), each group of speeds skipping the cells that cannot lower it (`lower_where_may`).
+    /// At each speed v of `v` (each ≥ 0, ascending): the largest tangential acceleration the
+    /// centripetal terms leave (at most `a_cap`), min_i (A_i − |d2_i|·v²)/|d1_i|, and the jerk
+    /// left with no tangential acceleration (at most `j_free`), min_i (J_i − |d3_i|·v³)/|d1_i|. All
+    /// speeds in one pass over the cells (the inner loop over speeds runs in SIMD lanes; each
+    /// value is the scalar one), each group of speeds skipping the cells that cannot lower it
+    /// (`lower_falling`: each term falls as v rises, every rounded step being monotone).
+    // Not inlined: inlined into the top speed's pass at one speed, that pass cost 5 M more.
+    #[inline(never)]
     pub fn free_at<const N: usize>(&self, v: &[f64; N]) -> ([f64; N], [f64; N]) {
+        debug_assert!(v.is_sorted());
         let (mut a_c, mut j_c) = ([self.a_cap; N], [self.j_free; N]);
-        let (mut a_most, mut j_most) = ([self.a_cap; N], [self.j_free; N]);
-        let v_high = group_max(v, f64::NEG_INFINITY);
         self.each_moving(|ax, [d1, d2, d3]| {
-            // Each term falls as v rises (every rounded step is monotone): its bound over a group
-            // is its value at the group's highest speed.
-            let a = |v: f64| (ax.max_acceleration - d2 * v * v) / d1;
-            let j = |v: f64| (ax.max_jerk - d3 * v * v * v) / d1;
-            lower_where_may(&mut a_c, &mut a_most, |g| a(v_high[g]), |k| a(v[k]));
-            lower_where_may(&mut j_c, &mut j_most, |g| j(v_high[g]), |k| j(v[k]));
+            let a = |k: usize| (ax.max_acceleration - d2 * v[k] * v[k]) / d1;
+            let j = |k: usize| (ax.max_jerk - d3 * v[k] * v[k] * v[k]) / d1;
+            lower_falling(&mut a_c, a);
+            lower_falling(&mut j_c, j);
         });
         (a_c, j_c)
     }
@@ -169,6 +169,9 @@ impl Budget<'_> {
         // The share of A_c as `at` checks it (J_c's follows from A_c's jerk term).
         let a_min = self.a_share();
         let mut v = self.start(v0);
+        // The bound that last lowered v (cell, axis, jerk or not): where it leaves no budget,
+        // `settle` does not ask `at`.
+        let mut binds = None;
         for cell in self.cells {
             for (i, ax) in self.machine.axes.iter().enumerate() {
                 let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
@@ -181,21 +184,49 @@ impl Budget<'_> {
                     (ax.max_acceleration, ax.max_jerk, 0.0)
                 };
                 if d2 * v * v > a_left {
-                    v = v.min(speed_for(d2, 2, a_left));
+                    let root = speed_for(d2, 2, a_left);
+                    binds = if root < v { Some((cell, i, false)) } else { binds };
+                    v = v.min(root);
                 }
                 if (d3 * v * v + c) * v > j_left {
-                    v = v.min(jerk_speed(d3, c, j_left));
+                    let root = jerk_speed(d3, c, j_left);
+                    binds = if root < v { Some((cell, i, true)) } else { binds };
+                    v = v.min(root);
                 }
             }
         }
-        self.settle(v.max(0.0))
+        let misses = |w| binds.is_some_and(|(cell, i, jerk)| self.misses(cell, i, jerk, w));
+        self.settle(v.max(0.0), misses)
+    }
+
+    /// Whether the bound of cell `cell` and axis i (its jerk term, or its acceleration term)
+    /// alone leaves `at` no budget at v: the same terms as there, where A_c falls to at most
+    /// the term, below its share, or a still axis runs over its limit.
+    fn misses(&self, cell: &[Vec3; 3], i: usize, jerk: bool, v: f64) -> bool {
+        let ax = &self.machine.axes[i];
+        let [d1, d2, d3] = [cell[0][i], cell[1][i], cell[2][i]];
+        if d1 <= NEGLIGIBLE {
+            return if jerk {
+                d3 * v * v * v > ax.max_jerk
+            } else {
+                d2 * v * v > ax.max_acceleration
+            };
+        }
+        let term = if !jerk {
+            (ax.max_acceleration - d2 * v * v) / d1
+        } else if d2 * v > NEGLIGIBLE {
+            (ax.max_jerk - d3 * v * v * v - d1 * self.j_min) / (3.0 * d2 * v)
+        } else {
+            return false;
+        };
+        term < self.a_share()
     }
 
     /// `max_speed` of a `v0` below the end that `max_speed` found from above by far more than
     /// rounding (as the top speed in arc.rs is): each bound's left side grows with v, so none
     /// binds there, and only `at` is checked (the same speed and budget, without the solves).
     pub fn max_speed_below_end(&self, v0: f64) -> (f64, (f64, f64)) {
-        self.settle(self.start(v0).max(0.0))
+        self.settle(self.start(v0).max(0.0), |_| false)
     }
 
     /// Where a search for the largest speed starts: `v0`, or 0 where the cap leaves A_c less
@@ -210,12 +241,13 @@ impl Budget<'_> {
 
     /// The largest speed at or a few ulps below `v` (≥ 0) that has a budget, and the budget there.
     /// Rounding may leave the closed form a hair outside the budget as `at` evaluates it (and
-    /// `at` skips the jerk term below NEGLIGIBLE): step down from a few ulps, doubling.
-    fn settle(&self, v: f64) -> (f64, (f64, f64)) {
+    /// `at` skips the jerk term below NEGLIGIBLE): step down from a few ulps, doubling. `at` is
+    /// not asked where `misses` already says it has no budget.
+    fn settle(&self, v: f64, misses: impl Fn(f64) -> bool) -> (f64, (f64, f64)) {
         let mut w = v;
         let mut step = v * f64::EPSILON;
         for _ in 0..FIT_STEPS {
-            if let Some(found) = self.at(w) {
+            if let Some(found) = (!misses(w)).then(|| self.at(w)).flatten() {
                 return (w, found);
             }
             w = (w - step).max(0.0);
@@ -255,6 +287,21 @@ fn largest(x: &[f64]) -> f64 {
         }
     }
     w[0]
+}
+
+/// `lower_where_may` where the lanes and the terms fall (or stay) from lane to lane: the lanes
+/// start equal and each term falls as the speed rises (ascending speeds; the bounds of a curve
+/// are finite, so no term is NaN in some lanes only), so that every lane stays at most its
+/// group's first (its largest) and each term at least its group's last (its smallest).
+#[inline(always)]
+fn lower_falling<const N: usize>(acc: &mut [f64; N], term: impl Fn(usize) -> f64) {
+    for g in (0..N / GROUP).map(|g| g * GROUP) {
+        if term(g + GROUP - 1) > acc[g] {
+            continue;
+        }
+        (g..g + GROUP).for_each(|k| lower(&mut acc[k], term(k)));
+    }
+    (N / GROUP * GROUP..N).for_each(|k| lower(&mut acc[k], term(k)));
 }
 
 /// `lower` of each lane k of `acc` by `term(k)`, where `most` holds at each group's first lane
@@ -390,6 +437,40 @@ mod tests {
             );
         }
         assert!(lowered > 200, "too few curves lowered below v0: {lowered}");
+    }
+
+    /// Where `misses` says a cell's bound leaves no budget, `at` finds none: random curves, shares
+    /// and speeds about each bound's end (`settle` does not ask `at` there).
+    #[test]
+    fn a_missed_bound_leaves_no_budget() {
+        let mut s = 0x51_7cc1_b727_220au64;
+        let mut missed = 0;
+        for _ in 0..1000 {
+            let machine = testing::machine(&mut s);
+            let cells = testing::cells(&mut s, 6, 3.0, -1.0);
+            let tangential = [0.0, 0.05, 0.25][(unit(&mut s) * 3.0) as usize];
+            let (a_free, j_free) = (1.0 + 5.0 * unit(&mut s), 10.0 + 100.0 * unit(&mut s));
+            let budget = Budget {
+                cells: &cells,
+                machine: &machine,
+                a_cap: a_free,
+                j_free,
+                a_min: tangential * a_free,
+                j_min: tangential * j_free,
+            };
+            let end = budget.max_speed(1e4).0;
+            for (cell, i, jerk) in (0..cells.len()).flat_map(|c| (0..6).map(move |k| (c, k / 2, k % 2 == 1)))
+            {
+                let w = end
+                    * (1.0 + 1e-15 * (unit(&mut s) - 0.5))
+                    * [1.0, 1.01, 0.99][(unit(&mut s) * 3.0) as usize];
+                if budget.misses(&cells[cell], i, jerk, w) {
+                    missed += 1;
+                    assert_eq!(budget.at(w), None, "cell {cell} axis {i} jerk {jerk} at {w}");
+                }
+            }
+        }
+        assert!(missed > 1000, "too few missed bounds: {missed}");
     }
 
     /// Below the end that `max_speed` finds from above (at `TOP_SHARE` of it, as the top speed in
