@@ -524,3 +524,31 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0863, 0.1363]);
 }
+
+/// A case `limit_failure_rate` found (seed 6), shortened to its last two moves: a line climbing
+/// in Z and a flat arc that ends the program. From 1.7 times Z's acceleration limit on, the
+/// transition between them ramps within 1.25 times the arc's ramp time, so it was joined to the
+/// arc in one chain, whose limits are the worst of its pieces': the arc then stopped within the
+/// transition's limits (×2.06: 0.2903 s against 0.2893 s, 0.2928 s at ×1.8). Where a stop
+/// follows a piece whose ramp to rest lies within it, a slower ramp within the other side's
+/// limits now counts against joining it by any margin (path/smooth.rs, `joined_loss`).
+#[test]
+fn a_higher_acceleration_limit_does_not_join_a_stopping_arc_to_a_slower_transition() {
+    let program = "G21 G90 G17 G64 F8263.8
+G1 X-0.6260 Y-3.3797 Z-0.5189
+G2 X-6.5138 Y-3.8368 Z-0.5189 I-3.0046 J0.5542
+M30
+";
+    let axes = |a_z: f64| {
+        [
+            [2673.62, 2115.62, 8.711e7],
+            [13440.94, 3189.97, 99570.3],
+            [14774.9, a_z, 3.39e8],
+        ]
+    };
+    let low = time(program, &found_machine(0.0649, axes(484.85)));
+    for k in [1.7, 1.8, 2.06, 2.4] {
+        let high = time(program, &found_machine(0.0649, axes(484.85 * k)));
+        assert!(high <= low * (1.0 + SLACK), "×{k}: {high} s > {low} s");
+    }
+}

@@ -49,7 +49,9 @@
 //! that ends its run is also compared with its lines to the corner after it and the line after
 //! that (→ 46, the worst ×1.0147); moves that end a run before a stop and pass their corners
 //! at a curve's speed are compared with it through them (→ 45); a side whose far end is rest
-//! is costed at its own speed, not its slower curved neighbour's (→ 44, the worst ×1.0142).
+//! is costed at its own speed, not its slower curved neighbour's (→ 44, the worst ×1.0142); a
+//! piece before a stop that holds its ramp to rest is not joined to a chain whose limits ramp
+//! slower by any margin (a higher limit: 3 → 2).
 //!
 //! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
 //! every lengthened case; the cases kept from them are in tests/monotone_found.rs.
