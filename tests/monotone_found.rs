@@ -551,4 +551,27 @@ M30
         let high = time(program, &found_machine(0.0649, axes(484.85 * k)));
         assert!(high <= low * (1.0 + SLACK), "×{k}: {high} s > {low} s");
     }
+
+/// A case `tolerance_failure_rate` found (seed 5, the worst then): after a long arc, lines of
+/// 3.8 µm, 5.0 µm and 0.29 mm end the program. At 3.02 times the tolerance the second line takes
+/// the first (path/micro.rs), and the circle the run of lines ends on, through its middle vertex
+/// counted in moves, passed 8.7 µm into it instead of 3.8: the run's end tangents turned by 0.15
+/// rad more from the arc (0.9147 s against 0.8968 s). A vertex within `HOOK` of a run's end is
+/// not on that circle (path/fit.rs, `Vertices::end_circle_middle`), taken by a line or not: both
+/// tolerances now end the run on the circle through 8.7 µm (0.9147 s against 0.9698 s).
+#[test]
+fn a_larger_tolerance_does_not_turn_a_run_end_circle_through_a_hook_a_line_took() {
+    let axes = [
+        [8435.11, 302.848, 2152.98],
+        [10107.73, 4076.85, 567058687.3],
+        [14350.33, 1800.78, 22197587.0],
+    ];
+    let program = "G21 G90 G17 G64 F2371.3
+G3 X-9.4879 Y-2.5168 Z3.7419 I-4.8311 J-0.9300
+G1 X-9.4867 Y-2.5204 Z3.7423
+G1 X-9.4849 Y-2.5250 Z3.7415
+G1 X-9.3837 Y-2.7879 Z3.8087
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.012994, 0.039234]);
 }
