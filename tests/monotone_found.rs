@@ -575,3 +575,27 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.012994, 0.039234]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 5): after an arc, a 0.54 mm line, a 9 µm hook and
+/// a 2.7 mm line (a stop at its corner) are one run, fitted over a circle through its first
+/// line's ends and its last end. That circle does not fit the run, which is split; at 3.9 times
+/// the tolerance the first line is fitted alone as a curve starting on the circle, turned from
+/// the arc, which it met at 11.0 mm/s where the line meets it at 18.9 (here 1.044 s against
+/// 0.995 s; +1.06 % in the program found). A curve over the first line of a split run that meets the span before
+/// at a lower corner ceiling than its line is not kept (path/fit.rs, `slower_entry`).
+#[test]
+fn a_larger_tolerance_does_not_fit_a_split_run_first_line_that_turns_from_the_span_before() {
+    let axes = [
+        [10722.51, 4601.61, 712685653.9],
+        [7790.87, 348.631, 128479.21],
+        [3142.75, 424.668, 4248.166],
+    ];
+    let program = "G21 G90 G17 G64 F3767.0
+G2 X-5.3815 Y-12.1224 Z2.9255 I-0.3877 J-7.0836
+G1 X-5.7637 Y-11.7436 Z2.9823
+G1 X-5.7702 Y-11.7372 Z2.9838
+G1 X-7.9203 Y-10.1775 Z2.2903
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.005997, 0.023213]);
+}

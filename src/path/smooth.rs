@@ -151,7 +151,7 @@ impl Span {
 }
 
 /// Whether `after` continues `span` with equal first and second derivatives (no transition).
-fn joined(span: &Span, after: &Span) -> bool {
+pub(super) fn joined(span: &Span, after: &Span) -> bool {
     let a = jet_at(&span.piece, span.piece.length());
     let b = jet_at(&after.piece, 0.0);
     norm(sub(a.d1, b.d1)) <= JOINT_D1_EPS && norm(sub(a.d2, b.d2)) <= JOINT_D2_EPS
@@ -176,7 +176,7 @@ pub struct SmoothBuilder {
     pub(super) run: Vec<Move>,
     pub(super) run_jet: VertexJet,
     /// Stage 2: the span waiting for its junction with the next.
-    held: Option<Span>,
+    pub(super) held: Option<Span>,
     /// Stage 3: the chain being filled, its pieces' bound cells (all, or none: `Chain::cells`),
     /// feed and speed class.
     chain: Chain,
@@ -194,7 +194,7 @@ pub struct SmoothBuilder {
     chain_single: Option<CurveLimits>,
     /// The last span stage 1 gave, waiting for the next one or a stop (its exit) before its
     /// junction with the held span.
-    waiting: Option<Span>,
+    pub(super) waiting: Option<Span>,
 }
 
 impl SmoothBuilder {
