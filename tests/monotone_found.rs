@@ -598,4 +598,28 @@ G1 X-7.9203 Y-10.1775 Z2.2903
 M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.005997, 0.023213]);
+
+/// A case `tolerance_failure_rate` found (seed 1): at 1.84 times the tolerance the transition
+/// between two arcs of 10.2 and 3.6 mm radius was cut longer (3.7 mm at 52 mm/s) and joined in
+/// one chain with the arc after it (8.4 mm at 60 mm/s), which brakes to the next corner. Each
+/// ramps to 52 mm/s from rest within 1.25 times the other's time, but below 49.6 mm/s the chain
+/// held 55 mm/s² where the arc alone holds 173 (the transition's limits near its top): within
+/// the worst of both at every speed, it braked slower (0.9588 s against 0.9447 s). Joining is
+/// judged by the ramp within that worst of both too (path/smooth.rs, `joined_loss`;
+/// `Banded::worst_with`).
+#[test]
+fn a_larger_tolerance_does_not_join_a_transition_to_an_arc_whose_limits_are_tighter_elsewhere() {
+    let axes = [
+        [5156.40, 1597.76, 9757818.8],
+        [8881.33, 1123.04, 16990.23],
+        [3285.48, 263.52, 2868048.5],
+    ];
+    let program = "G21 G90 G17 G64 F8146.7
+G3 X7.8210 Y-2.2798 Z-0.0001 I6.3088 J7.1829
+G1 X10.5255 Y-1.8536 Z-0.4803
+G3 X12.0719 Y17.8949 Z-3.4922 I-1.5769 J10.0583
+G3 X8.4304 Y11.7648 Z-4.3307 I-1.5125 J-3.2482
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0736, 0.1353]);
 }

@@ -174,6 +174,63 @@ impl Banded<'_> {
         self.bands.levels().iter().take_while(|b| v > b.v_top).count()
     }
 
+    /// Time of the fastest ramp from rest to `v_top` within the worst of these limits and
+    /// `other`'s at every speed (`worst_with`), or None where one set's are nowhere above the
+    /// other's (the ramp is that set's own).
+    pub fn worst_ramp(&self, other: &Banded, v_top: f64) -> Option<f64> {
+        let (top, bands) = self.worst_with(other, v_top)?;
+        let worst = Banded {
+            kind: self.kind,
+            top: &top,
+            bands: &bands,
+        };
+        Some(scurve7_banded::ramp_time(&worst, 0.0, v_top))
+    }
+
+    /// The worst of these limits and `other`'s at every speed up to `v_top` (a chain's, whose
+    /// limits are the worst of its pieces'): on both sets' band edges below it, each band the
+    /// least acceleration and jerk of the two there (the fastest `MAX_BANDS` kept). None where
+    /// one set's are nowhere above the other's: the worst is that set itself.
+    fn worst_with(&self, other: &Banded, v_top: f64) -> Option<(Limits, Bands)> {
+        let (xs, ys) = (self.bands.levels(), other.bands.levels());
+        let (mut i, mut k) = (0, 0);
+        let (mut below, mut above) = (true, true);
+        let mut levels = Vec::with_capacity(xs.len() + ys.len());
+        // Both sets' edges in increasing order, each band's pair where it ends.
+        loop {
+            let v = match (xs.get(i), ys.get(k)) {
+                (Some(x), Some(y)) => x.v_top.min(y.v_top),
+                (Some(x), None) => x.v_top,
+                (None, Some(y)) => y.v_top,
+                (None, None) => f64::INFINITY,
+            }
+            .min(v_top);
+            let (x, y) = (self.limits(i), other.limits(k));
+            below &= x.a_max <= y.a_max && x.j_max <= y.j_max;
+            above &= x.a_max >= y.a_max && x.j_max >= y.j_max;
+            let (a_max, j_max) = (x.a_max.min(y.a_max), x.j_max.min(y.j_max));
+            if v >= v_top {
+                if below || above {
+                    return None;
+                }
+                let top = Limits {
+                    v_max: v_top,
+                    a_max,
+                    j_max,
+                    snap_max: self.top.snap_max.min(other.top.snap_max),
+                };
+                return Some((top, Bands::keep_below(&top, levels)));
+            }
+            levels.push(Band {
+                v_top: v,
+                a_max,
+                j_max,
+            });
+            i += usize::from(xs.get(i).is_some_and(|b| b.v_top == v));
+            k += usize::from(ys.get(k).is_some_and(|b| b.v_top == v));
+        }
+    }
+
     /// Distance of the fastest speed change v1 → v2: the bands' ramps between them in turn.
     pub fn ramp_distance(&self, v1: f64, v2: f64) -> f64 {
         let (lo, hi) = (v1.min(v2).max(0.0), v1.max(v2).max(0.0));
