@@ -623,3 +623,27 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0736, 0.1353]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 2): at 3.7 times the tolerance the corner between
+/// a 0.19 mm line and a small arc was first cut at its reach, where the transition is held to
+/// the arc's 1.6 mm/s; the halved cut runs slower (1.4 mm/s) and cost more, so the search
+/// stopped there, while cuts an octave further down, which leave the line room to brake from
+/// the arc before it, cost less (the smaller tolerance's search found them). 0.4988 s against
+/// 0.4880 s. Where the best cut is held below its own speed and the halving is slower than that,
+/// one more halving is tried (path/junction.rs, `Search::cuts`).
+#[test]
+fn a_larger_tolerance_does_not_stop_the_cut_search_at_a_cut_held_to_its_neighbour() {
+    let axes = [
+        [11160.18, 1112.77, 13714001.4],
+        [5059.78, 361.50, 1734.18],
+        [1495.85, 921.16, 30398.49],
+    ];
+    let program = "G21 G90 G17 G64 F7654.5
+G2 X0.2868 Y-0.2668 Z-0.0717 I0.0000 J-0.2875
+G1 X0.2809 Y-0.4585 Z-0.0231
+G2 X0.1868 Y-0.4953 Z-0.0231 I-0.0487 J-0.0142
+G2 X0.0882 Y-0.4061 Z-0.0231 I0.0661 J0.1723
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.00715, 0.0265]);
+}

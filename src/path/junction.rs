@@ -477,6 +477,8 @@ impl Search<'_> {
         }
         let best = slot.as_mut()?;
         let (admitted, longest) = (best.k, best.d);
+        // The speed ceiling of the last cut tried.
+        let last_ceiling = std::cell::Cell::new(f64::INFINITY);
         // The cut at index k, into `best`, if it is within the tolerance and cheaper than `best`
         // by `SAVING` (in place: a returned cut was copied on each way out).
         let try_at = |k: i32, best: &mut Found| {
@@ -487,6 +489,7 @@ impl Search<'_> {
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
             let mut solved = [None; 2];
             let v_ceiling = self.speed(d, own.ceiling(), &mut solved);
+            last_ceiling.set(v_ceiling);
             let prune = best.cost - SAVING + PRUNE_MARGIN * best.cost.abs();
             // Most of them are pruned by a bound of that cost from below (`cost_floor`), without
             // the banded ramps' solves.
@@ -507,8 +510,17 @@ impl Search<'_> {
             *best = shorter;
             Some(())
         };
-        // Down by halves while cheaper.
-        while try_at(best.k + OCTAVE, best).is_some() {}
+        // Down by halves while cheaper. Where the best is held below its own top speed (to a
+        // neighbour's) and the halving that was not cheaper is slower than that, the cost rose
+        // with the curve's speed, not with what it replaces, and may fall again further down:
+        // one more halving is tried.
+        loop {
+            while try_at(best.k + OCTAVE, best).is_some() {}
+            let held = best.at < best.v && last_ceiling.get() < best.at;
+            if !(held && try_at(best.k + 2 * OCTAVE, best).is_some()) {
+                break;
+            }
+        }
         // Then a quarter and an eighth of the octave about the best.
         for step in [OCTAVE / 2, OCTAVE / 4] {
             let around = [best.k - step, best.k + step];
