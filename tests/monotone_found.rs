@@ -646,4 +646,24 @@ G2 X0.0882 Y-0.4061 Z-0.0231 I0.0661 J0.1723
 M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.00715, 0.0265]);
+
+/// A case `tolerance_failure_rate` found (seed 5): a 0.082 mm line from rest and a 0.168 mm one.
+/// The smaller tolerance's first cut, 0.0455 mm, ran the corner at 6.85 mm/s, where the line
+/// from rest reaches it over what the cut leaves; at 2.8 times the tolerance the whole line was
+/// admitted and the grid's cuts compared: 0.0408 mm at 6.37 mm/s, and 0.0485 mm capped at 6.57
+/// by the line's rise over the 0.033 mm it leaves (0.0475 s against 0.0464 s). The cut where that
+/// rise meets the transition's speed is tried too (path/junction/crossing.rs).
+#[test]
+fn a_larger_tolerance_finds_the_cut_where_the_rise_from_rest_meets_the_corner() {
+    let axes = [
+        [10214.38, 760.34, 692344.99],
+        [4063.32, 3616.96, 56147.22],
+        [1478.56, 271.98, 518776073.83],
+    ];
+    let program = "G21 G90 G17 G64 F1247.4
+G1 X0.0810 Y-0.0090 Z-0.0041
+G1 X0.2352 Y-0.0674 Z0.0268
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0029, 0.0081]);
 }

@@ -8,6 +8,7 @@
 //! slower one.
 
 mod cost;
+mod crossing;
 
 use super::chain::{Curve, CurveLimits, Own};
 use super::cover::{lead, Guards, Leads, UNMEASURED};
@@ -481,9 +482,8 @@ impl Search<'_> {
         let last_ceiling = std::cell::Cell::new(f64::INFINITY);
         // The cut at index k, into `best`, if it is within the tolerance and cheaper than `best`
         // by `SAVING` (in place: a returned cut was copied on each way out).
-        let try_at = |k: i32, best: &mut Found| {
+        let try_cut = |k: i32, (d, shape): (f64, Unbounded), best: &mut Found| {
             // The curve's speed bound only where its frame needs it, or once the cut is not pruned.
-            let (d, shape) = self.shape_at(k, first, share)?;
             let mut own = Own::of_shape(&shape, self.feed, m);
             // The cost falls with the speed: where even the speed's ceiling costs clearly more
             // (`PRUNE_MARGIN`), the cut is not taken (most tries are not), unsolved.
@@ -510,6 +510,7 @@ impl Search<'_> {
             *best = shorter;
             Some(())
         };
+        let try_at = |k: i32, best: &mut Found| try_cut(k, self.shape_at(k, first, share)?, best);
         // Down by halves while cheaper. Where the best is held below its own top speed (to a
         // neighbour's) and the halving that was not cheaper is slower than that, the cost rose
         // with the curve's speed, not with what it replaces, and may fall again further down:
@@ -527,6 +528,21 @@ impl Search<'_> {
             for k in around.into_iter().filter(|&k| k >= admitted) {
                 try_at(k, best);
             }
+        }
+        // Where the next longer cut is capped by the rise of the span before and the best is
+        // not, the cost has its kink between them: the cut where the rise meets the curve's
+        // speed, on the grid or off it, so a larger tolerance finds it where a smaller one's
+        // first cut fell near it (seed 5 case 737: 0.0455 mm at 6.85 mm/s, the grid's 0.0408
+        // at 6.37 and 0.0485 at 6.57). A best run below its own speed and its sides' is capped
+        // already (past the kink).
+        let uncapped = best.at >= best.v.min(self.sides[0].v).min(self.sides[1].v);
+        let longer = (uncapped && best.k > admitted && self.ends[0].is_some())
+            .then(|| self.shape_at(best.k - 1, first, share));
+        if let Some(d) = longer
+            .flatten()
+            .and_then(|(d, _)| self.rise_crossing(best.d, d, share))
+        {
+            try_cut(best.k, (d, cut_shape(self.held, self.next, d, share)), best);
         }
         Some(longest)
     }
