@@ -667,3 +667,25 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0029, 0.0081]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 6): a 1.40 mm line turning 6° into a 0.38 mm one
+/// that ends the program on Z's jerk of 2701 mm/s³. At 1.7 times the tolerance the last line
+/// was fitted alone as a curve whose top band has 148 mm/s² where the line has 536: kept, as a
+/// curve over one line amid a run is unless its ramps are `TIGHTER_RAMP` times slower, but it
+/// ramps to rest on them, and its corner with the line before then ran through at 5.6 mm/s
+/// where the lines stop (0.1917 s against 0.1870 s). A curve over one line that ends its run
+/// before a stop after a span left straight is compared from rest to rest (path/fit.rs).
+#[test]
+fn a_larger_tolerance_does_not_fit_the_last_line_before_a_stop_as_a_curve_with_slower_ramps() {
+    let axes = [
+        [3029.52, 202.92, 299968519.63],
+        [1123.52, 574.26, 84680949.01],
+        [12661.03, 503.47, 2701.09],
+    ];
+    let program = "G21 G90 G17 G64 F14009.0
+G1 X0.5354 Y-1.2986 Z-0.0010
+G1 X0.6807 Y-1.6516 Z-0.0433
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0018, 0.0031]);
+}

@@ -287,7 +287,15 @@ impl SmoothBuilder {
         // stop), slower from rest to rest than the moves each from rest to rest; over one line
         // elsewhere, unless its ramps are clearly slower than the line's (`TIGHTER_RAMP` times
         // its time from rest to rest): its top speed then says little of what it runs.
-        let rest_to_rest = moves.len() > 1 || span.from == 0 && self.at_rest();
+        // So is one line that ends its run before a stop after a span left straight: it meets
+        // that span at a corner and ramps to rest within its own limits, so its ramps are run.
+        let after_line = matches!(
+            self.waiting.as_ref().map(|w| &w.piece.curve),
+            Some(Curve::Line(_))
+        );
+        let rest_to_rest = moves.len() > 1
+            || span.from == 0 && self.at_rest()
+            || span.stop_after && span.to == span.run.len() && after_line;
         // A whole run from rest stands alone (a stop before it, a corner or a stop after): its
         // lines would run through the corners the curve passes at its top speed, not each from
         // rest to rest; so would the moves that end a run before a stop where they pass all
