@@ -551,6 +551,7 @@ M30
         let high = time(program, &found_machine(0.0649, axes(484.85 * k)));
         assert!(high <= low * (1.0 + SLACK), "×{k}: {high} s > {low} s");
     }
+}
 
 /// A case `tolerance_failure_rate` found (seed 5, the worst then): after a long arc, lines of
 /// 3.8 µm, 5.0 µm and 0.29 mm end the program. At 3.02 times the tolerance the second line takes
@@ -581,8 +582,9 @@ M30
 /// line's ends and its last end. That circle does not fit the run, which is split; at 3.9 times
 /// the tolerance the first line is fitted alone as a curve starting on the circle, turned from
 /// the arc, which it met at 11.0 mm/s where the line meets it at 18.9 (here 1.044 s against
-/// 0.995 s; +1.06 % in the program found). A curve over the first line of a split run that meets the span before
-/// at a lower corner ceiling than its line is not kept (path/fit.rs, `slower_entry`).
+/// 0.995 s; +1.06 % in the program found). A curve over the first line of a split run that
+/// meets the span before at a lower corner ceiling than its line is not kept (path/fit.rs,
+/// `slower_entry`).
 #[test]
 fn a_larger_tolerance_does_not_fit_a_split_run_first_line_that_turns_from_the_span_before() {
     let axes = [
@@ -598,6 +600,7 @@ G1 X-7.9203 Y-10.1775 Z2.2903
 M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.005997, 0.023213]);
+}
 
 /// A case `tolerance_failure_rate` found (seed 1): at 1.84 times the tolerance the transition
 /// between two arcs of 10.2 and 3.6 mm radius was cut longer (3.7 mm at 52 mm/s) and joined in
@@ -606,7 +609,7 @@ M30
 /// held 55 mm/s² where the arc alone holds 173 (the transition's limits near its top): within
 /// the worst of both at every speed, it braked slower (0.9588 s against 0.9447 s). Joining is
 /// judged by the ramp within that worst of both too (path/smooth.rs, `joined_loss`;
-/// `Banded::worst_with`).
+/// `Banded::worst_ramp`).
 #[test]
 fn a_larger_tolerance_does_not_join_a_transition_to_an_arc_whose_limits_are_tighter_elsewhere() {
     let axes = [
@@ -646,6 +649,7 @@ G2 X0.0882 Y-0.4061 Z-0.0231 I0.0661 J0.1723
 M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.00715, 0.0265]);
+}
 
 /// A case `tolerance_failure_rate` found (seed 5): a 0.082 mm line from rest and a 0.168 mm one.
 /// The smaller tolerance's first cut, 0.0455 mm, ran the corner at 6.85 mm/s, where the line
