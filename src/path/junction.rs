@@ -538,11 +538,14 @@ impl Search<'_> {
         let uncapped = best.at >= best.v.min(self.sides[0].v).min(self.sides[1].v);
         let longer = (uncapped && best.k > admitted && self.ends[0].is_some())
             .then(|| self.shape_at(best.k - 1, first, share));
-        if let Some(d) = longer
+        // The best's ceiling is its shape's (`Own::ceiling_of`): it came from `try_cut`, above
+        // the admitted cut.
+        let free = (best.d, best.own.ceiling());
+        if let Some(cut) = longer
             .flatten()
-            .and_then(|(d, _)| self.rise_crossing(best.d, d, share))
+            .and_then(|capped| self.rise_crossing(free, capped, share))
         {
-            try_cut(best.k, (d, cut_shape(self.held, self.next, d, share)), best);
+            try_cut(best.k, cut, best);
         }
         Some(longest)
     }
