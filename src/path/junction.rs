@@ -368,13 +368,15 @@ impl Search<'_> {
         if rests[0] == 0.0 && self.held.entry == Some(0.0) {
             return 0.0;
         }
+        let slower = self.sides[0].v.min(self.sides[1].v);
         let mut v = v_max.min(self.sides[0].v).min(self.sides[1].v);
         if rests[0] == 0.0 {
             v = v.min(self.held.entry.unwrap_or(v));
         }
         for ((end, rest), solved) in self.ends.iter().zip(rests).zip(solved) {
             if let Some((rise, _)) = end.filter(|&(_, to_slower)| rest < to_slower) {
-                if rise.time_distance(v).1 > rest {
+                // At the slower side's speed the rise takes `to_slower`, more than `rest`.
+                if v == slower || rise.time_distance(v).1 > rest {
                     v = v.min(*solved.get_or_insert_with(|| rise.max_speed(rest)));
                 }
             }
