@@ -693,3 +693,27 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0018, 0.0031]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 3): four lines, 10 µm, 0.44 mm, 4.8 µm and 52 µm,
+/// one run fitted as one curve from rest to rest. Its end circles passed through its middle
+/// vertex counted in moves: the 0.44 mm line's end, until at 3.7 times the tolerance the last line
+/// took the 4.8 µm move and the middle became the 10 µm line's end, which bent the curve at its
+/// start (0.1291 s against 0.1249 s; +0.32 % in the program found). A middle counted in moves
+/// within the run's outer tenth of length gives way to the vertex nearest the middle of its length
+/// (path/fit.rs, `Vertices::end_circle_middle`).
+#[test]
+fn a_larger_tolerance_does_not_move_a_run_end_circle_to_its_first_tiny_line() {
+    let axes = [
+        [1376.23, 995.14, 8467.86],
+        [6511.57, 2268.83, 18341.95],
+        [14607.70, 1758.54, 15515468.4],
+    ];
+    let program = "G21 G90 G17 G64 F6061.3
+G1 X0.0105 Y-0.0000 Z0.0010
+G1 X0.4478 Y0.0001 Z-0.0459
+G1 X0.4526 Y0.0001 Z-0.0469
+G1 X0.5048 Y0.0001 Z-0.0478
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.021393, 0.078338]);
+}

@@ -50,6 +50,11 @@ const BALANCE: f64 = 3.0;
 /// 0.15 rad more once the hook was taken (+1.4 %, tests/monotone_found.rs); at 10 µm a random
 /// program in 6000 ran 3 % longer at a larger tolerance (seed 9), at 15 µm a digest run 0.4 %.
 const HOOK: f64 = 5e-6;
+/// Share of a run's length at either end where its middle vertex counted in moves bunches the
+/// end circle's points: its circle stands for that end alone. A larger tolerance let the last
+/// of four lines take a 4.8 µm move, and the middle moved from 0.45 mm into the 0.51 mm run to
+/// the 10 µm first line's end (+3.4 %, tests/monotone_found.rs).
+const END_SHARE: f64 = 0.1;
 /// Share of the moves' turns that their net turn must reach to count as one bend.
 const COHERENT: f64 = 0.5;
 
@@ -130,15 +135,23 @@ impl Vertices {
     }
 
     /// The middle point of the circle a run between two knots ends on: its middle vertex
-    /// (counted in moves), or the one nearest it that is not within `HOOK` of either end; with
-    /// none, no circle (the run's chord).
+    /// (counted in moves), or the one nearest it that is not within `HOOK` of either end; where
+    /// that lies in the run's outer `END_SHARE` of length, the vertex nearest the middle of its
+    /// length (not within `HOOK`); with none, no circle (the run's chord).
     fn end_circle_middle(&self, moves: usize) -> Option<usize> {
         let s = &self.s;
         let hook = |k: usize| s[k] < HOOK || s[moves] - s[k] < HOOK;
+        let off_middle = |k: usize| (s[k] - 0.5 * s[moves]).abs();
         let mid = moves / 2;
         (0..moves)
             .flat_map(|k| [mid + k, mid.wrapping_sub(k)])
             .find(|&k| (1..moves).contains(&k) && !hook(k))
+            .filter(|&k| off_middle(k) <= (0.5 - END_SHARE) * s[moves])
+            .or_else(|| {
+                (1..moves)
+                    .filter(|&k| !hook(k))
+                    .min_by(|&a, &b| off_middle(a).total_cmp(&off_middle(b)))
+            })
     }
 
     /// The jet at vertex `i` from the circle through it and the vertices `lo` before and `hi`
