@@ -717,3 +717,26 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.021393, 0.078338]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 4): a 16 µm line from rest and a 0.95 mm one into
+/// an arc, on X's 222 mm/s². At 2.7 times the tolerance the two were fitted as one curve from
+/// rest, kept against the lines with a stop at their corner, which they pass at 2.7 mm/s; once
+/// compared through that corner it was split and the 0.95 mm line fitted alone, rising from it
+/// on 158 mm/s² where the line has 222 (0.3086 s against 0.3041 s). A run that stands alone is
+/// compared with its lines through every corner at its own speed, and a curve over one line
+/// entering below its top speed after a line left straight from rest to rest (path/fit.rs).
+#[test]
+fn a_larger_tolerance_does_not_fit_a_line_after_a_tiny_one_from_rest_as_a_curve_that_rises_slower() {
+    let axes = [
+        [4310.65, 222.38, 640891900.28],
+        [10475.54, 2176.80, 220721817.37],
+        [1658.93, 2859.82, 8564546.74],
+    ];
+    let program = "G21 G90 G17 G64 F943.6
+G1 X0.0163 Y0.0009 Z0.0009
+G1 X0.9517 Y-0.1614 Z-0.0905
+G2 X0.7060 Y-1.0198 Z0.0066 I-0.0006 J-0.4642
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0303, 0.0807]);
+}
