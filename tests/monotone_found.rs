@@ -740,3 +740,24 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0303, 0.0807]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 2): an arc, a 0.32 mm line and a 26.5 mm arc on
+/// Z's jerk of 2715 mm/s³; 2.2507 s at 2.1 times the tolerance against 2.2447 s. A cut (or a
+/// stop) at a corner is now also charged what the corner before loses where the span before
+/// cannot drop from its entry (that corner's transition speed) to the cut's speed over what the
+/// cut leaves of it (path/junction.rs, `Search::entry_drop`).
+#[test]
+fn a_larger_tolerance_does_not_cut_a_corner_slower_than_the_span_before_drops_to() {
+    let axes = [
+        [5375.56, 3633.94, 108420150.47],
+        [1010.10, 346.24, 31369.42],
+        [1281.58, 689.03, 2715.21],
+    ];
+    let program = "G21 G90 G17 G64 F3018.1
+G3 X11.3977 Y4.4163 Z0.0000 I-0.0077 J16.9356
+G1 X11.6308 Y4.6287 Z-0.0189
+G3 X11.5816 Y27.8634 Z4.4029 I-10.5633 J11.5950
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.00437, 0.00929]);
+}

@@ -20,7 +20,7 @@ use crate::config::Machine;
 use crate::feed::scurve7_banded::Rise;
 use crate::feed::{scurve7, BlockRequest, FeedLaw};
 use crate::geometry::{add, dot, norm, scale, sub, unit, Line};
-use cost::{cost_floor, joined_sides, local_cost, side, stop_below, End, Far, Side};
+use cost::{cost_floor, entry_drop, joined_sides, local_cost, side, stop_below, End, Far, Side};
 
 /// Steps down the grid of cuts (`GRID`) before the junction stops instead.
 const MAX_SHRINKS: usize = 60;
@@ -242,12 +242,19 @@ pub(super) fn transition(
     // counted too (a short span's ramps to and from the corner share its length: where the
     // first says stop, the second often does not).
     let best = cuts[at].as_ref()?;
-    if stop_below(&sides, best.cost - SAVING) {
+    // Each side of the comparison is charged what the corner before loses to it
+    // (`entry_drop`), solved only where the stop may win without that.
+    let drops = stop_below(&sides, best.cost - SAVING).then(|| {
+        let stop_drop = entry_drop(search.held, &sides[0], 0.0, 0.0);
+        (stop_drop, entry_drop(search.held, &sides[0], best.d, best.at))
+    });
+    let drops = drops.filter(|&(stop_drop, _)| stop_below(&sides, best.cost - SAVING - stop_drop));
+    if let Some((stop_drop, best_drop)) = drops {
         for (k, side) in sides.iter_mut().enumerate() {
             side.far = far_of(k, side);
         }
         let at_best = local_cost(best.d, best.h.length(), best.at, &sides);
-        if stop_below(&sides, at_best - SAVING) {
+        if stop_below(&sides, at_best + best_drop - SAVING - stop_drop) {
             return None;
         }
     }
@@ -467,6 +474,7 @@ impl Search<'_> {
             match faster_than_a_stop(&h, self.feed, m) {
                 Some(speed) => {
                     let mut found = self.found(k, d, h, speed, share, None, &mut [None; 2]);
+                    found.cost += entry_drop(self.held, &self.sides[0], d, found.at);
                     found.leads = leads;
                     *slot = Some(found);
                     break;
@@ -507,6 +515,9 @@ impl Search<'_> {
             // Where the neighbours cap both speeds alike, the cost is the one just found.
             let known = Some((v_ceiling, at_ceiling));
             let mut shorter = self.found(k, d, h, (v_max, own), share, known, &mut solved);
+            (shorter.cost < best.cost - SAVING).then_some(())?;
+            // Only raises the cost: solved only where the cut would be taken without it.
+            shorter.cost += entry_drop(self.held, &self.sides[0], d, shorter.at);
             (shorter.cost < best.cost - SAVING).then_some(())?;
             self.within(d, &shorter.h, &mut shorter.leads).then_some(())?;
             *best = shorter;

@@ -186,6 +186,33 @@ fn with_side(mut cost: f64, d: f64, v: f64, s: &Side) -> f64 {
     cost
 }
 
+/// What the corner before loses where the span before (`held`, side `s`) cannot drop from its
+/// entry (the top speed of the transition before it) to `v` over what cut `d` leaves of it:
+/// that transition then runs no faster than the span drops from, and the span's length is run
+/// at the mean of both speeds, not at the entry (a proxy for that transition's own length).
+pub(super) fn entry_drop(held: &Span, s: &Side, d: f64, v: f64) -> f64 {
+    let Some(e) = held.entry.filter(|&e| e > v) else {
+        return 0.0;
+    };
+    let length = held.piece.length();
+    let rest = (length - d).max(0.0);
+    // Most drops fit within the side's tightest pair already: no banded solve.
+    let (tightest, _) = s.bands.pair_range(&s.top);
+    if scurve7::ramp_distance(v.max(0.0), e, &tightest) <= rest {
+        return 0.0;
+    }
+    let banded = Banded {
+        kind: ProfileKind::Scurve7,
+        top: &s.top,
+        bands: &s.bands,
+    };
+    let r = banded.max_entry(rest, v.max(0.0));
+    if r >= e {
+        return 0.0;
+    }
+    length * (2.0 / (r + e) - 1.0 / e)
+}
+
 /// A bound from below of `local_cost` at the same cut and speed, without the banded ramps'
 /// solves: each side's ramp within the widest of its pairs (its bands only widen its limits
 /// below its top, so no ramp within them is faster: T − D/v_side is no smaller), in closed
