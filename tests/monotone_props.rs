@@ -58,7 +58,8 @@
 //! speed; the cut search tries one more halving past a cut held to its neighbour (a higher
 //! limit: 1), and the cut where the rise of the span before meets the transition; one-line
 //! curves before a stop after a line, or rising from a line from rest, are compared from rest
-//! to rest (→ 23, the worst ×1.0042).
+//! to rest; a cut is charged what the corner before loses where the span before cannot drop
+//! to its speed over what it leaves (→ 23, the worst ×1.0042).
 //!
 //! `limit_failure_rate` and `tolerance_failure_rate` (ignored, run by hand) print the rate and
 //! every lengthened case; the cases kept from them are in tests/monotone_found.rs.
