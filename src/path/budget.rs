@@ -388,6 +388,25 @@ mod tests {
     use crate::path::testing;
     use crate::test_rng::unit;
 
+    /// The budget of `cells` on `machine` with `tangential` of the free acceleration and jerk
+    /// kept for the path (the shares), A_c at most `a_cap`.
+    fn shared<'a>(
+        cells: &'a [[Vec3; 3]],
+        machine: &'a Machine,
+        a_cap: f64,
+        (a_free, j_free): (f64, f64),
+        tangential: f64,
+    ) -> Budget<'a> {
+        Budget {
+            cells,
+            machine,
+            a_cap,
+            j_free,
+            a_min: tangential * a_free,
+            j_min: tangential * j_free,
+        }
+    }
+
     /// The closed-form speed equals the 32-step bisection it replaced (to its 2⁻³² of v0) on 1000
     /// random curves: cells with zero and non-zero bounds, random axis limits and shares.
     #[test]
@@ -399,14 +418,13 @@ mod tests {
             let cells = testing::cells(&mut s, 6, 3.0, -1.0);
             let tangential = [0.005, 0.05, 0.1, 0.25][(unit(&mut s) * 4.0) as usize];
             let (a_free, j_free) = (1.0 + 5.0 * unit(&mut s), 10.0 + 100.0 * unit(&mut s));
-            let budget = Budget {
-                cells: &cells,
-                machine: &machine,
-                a_cap: [0.5, 1.0][(unit(&mut s) * 2.0) as usize] * a_free,
-                j_free,
-                a_min: tangential * a_free,
-                j_min: tangential * j_free,
-            };
+            let budget = shared(
+                &cells,
+                &machine,
+                [0.5, 1.0][(unit(&mut s) * 2.0) as usize] * a_free,
+                (a_free, j_free),
+                tangential,
+            );
             let v0 = 0.01 + unit(&mut s);
             // The old routine: v0 if it has a budget, else 32 bisection steps on [0, v0].
             let old = if budget.at(v0).is_some() {
@@ -450,14 +468,7 @@ mod tests {
             let cells = testing::cells(&mut s, 6, 3.0, -1.0);
             let tangential = [0.0, 0.05, 0.25][(unit(&mut s) * 3.0) as usize];
             let (a_free, j_free) = (1.0 + 5.0 * unit(&mut s), 10.0 + 100.0 * unit(&mut s));
-            let budget = Budget {
-                cells: &cells,
-                machine: &machine,
-                a_cap: a_free,
-                j_free,
-                a_min: tangential * a_free,
-                j_min: tangential * j_free,
-            };
+            let budget = shared(&cells, &machine, a_free, (a_free, j_free), tangential);
             let end = budget.max_speed(1e4).0;
             for (cell, i, jerk) in (0..cells.len()).flat_map(|c| (0..6).map(move |k| (c, k / 2, k % 2 == 1)))
             {
@@ -483,14 +494,7 @@ mod tests {
             let cells = testing::cells(&mut s, 6, 3.0, -1.0);
             let (a_free, j_free) = (1.0 + 5.0 * unit(&mut s), 10.0 + 100.0 * unit(&mut s));
             let tangential = [0.0, 0.1][(unit(&mut s) * 2.0) as usize];
-            let budget = Budget {
-                cells: &cells,
-                machine: &machine,
-                a_cap: a_free,
-                j_free,
-                a_min: tangential * a_free,
-                j_min: tangential * j_free,
-            };
+            let budget = shared(&cells, &machine, a_free, (a_free, j_free), tangential);
             let end = budget.max_speed(1e4).0;
             for v0 in [0.995 * end, 0.5 * end, 0.0] {
                 let bits = |(v, (a, j)): (f64, (f64, f64))| [v, a, j].map(f64::to_bits);
