@@ -302,13 +302,9 @@ impl SmoothBuilder {
         // its time from rest to rest): its top speed then says little of what it runs.
         // So is one line that ends its run before a stop after a span left straight: it meets
         // that span at a corner and ramps to rest within its own limits, so its ramps are run.
-        let after_line = matches!(
-            self.waiting.as_ref().map(|w| &w.piece.curve),
-            Some(Curve::Line(_))
-        );
         let rest_to_rest = moves.len() > 1
             || span.from == 0 && self.at_rest()
-            || span.stop_after && span.to == span.run.len() && after_line;
+            || span.stop_after && span.to == span.run.len() && self.line_waits();
         // A whole run from rest stands alone (a stop before it, a corner or a stop after): its
         // lines would run through every corner at its own speed, not each from rest to rest (a
         // 16 µm line and a 0.95 mm one pass theirs at 2.7 mm/s: against a stop there, a curve
@@ -367,14 +363,18 @@ impl SmoothBuilder {
         }
     }
 
+    /// Whether the span waiting for its junction is a line: a span left straight.
+    fn line_waits(&self) -> bool {
+        matches!(
+            self.waiting.as_ref().map(|w| &w.piece.curve),
+            Some(Curve::Line(_))
+        )
+    }
+
     /// Whether the span waiting is a line that starts at rest (nothing held before it): the
     /// first of a run left straight.
     fn line_waits_from_rest(&self) -> bool {
-        self.held.is_none()
-            && matches!(
-                self.waiting.as_ref().map(|w| &w.piece.curve),
-                Some(Curve::Line(_))
-            )
+        self.held.is_none() && self.line_waits()
     }
 
     /// Whether a curve over the first line of a run that was split turns more sharply from the

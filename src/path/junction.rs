@@ -278,6 +278,11 @@ struct Search<'a> {
 }
 
 impl Search<'_> {
+    /// The slower side's speed: a cut runs no faster.
+    fn slower(&self) -> f64 {
+        self.sides[0].v.min(self.sides[1].v)
+    }
+
     /// The cut at index `k` (`first`: the grid index of the first grid cut at or below the
     /// start of the search, and that start; an index below it stands for the start itself) and
     /// its curve for λ = 2·share·d, if longer than `MIN_LENGTH`.
@@ -325,8 +330,8 @@ impl Search<'_> {
         if rests[0] == 0.0 && self.held.entry == Some(0.0) {
             return 0.0;
         }
-        let slower = self.sides[0].v.min(self.sides[1].v);
-        let mut v = v_max.min(self.sides[0].v).min(self.sides[1].v);
+        let slower = self.slower();
+        let mut v = v_max.min(slower);
         if rests[0] == 0.0 {
             v = v.min(self.held.entry.unwrap_or(v));
         }
@@ -498,7 +503,7 @@ impl Search<'_> {
         // first cut fell near it (seed 5 case 737: 0.0455 mm at 6.85 mm/s, the grid's 0.0408
         // at 6.37 and 0.0485 at 6.57). A best run below its own speed and its sides' is capped
         // already (past the kink).
-        let uncapped = best.at >= best.v.min(self.sides[0].v).min(self.sides[1].v);
+        let uncapped = best.at >= best.v.min(self.slower());
         let longer = (uncapped && best.k > admitted && self.ends[0].is_some())
             .then(|| self.shape_at(best.k - 1, first, share));
         // The best's ceiling is its shape's (`Own::ceiling_of`): it came from `try_cut`, above

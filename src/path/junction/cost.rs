@@ -29,6 +29,15 @@ pub(super) struct Side {
 }
 
 impl Side {
+    /// Its limits and bands, as its ramps are planned.
+    pub(super) fn banded(&self) -> Banded<'_> {
+        Banded {
+            kind: ProfileKind::Scurve7,
+            top: &self.top,
+            bands: &self.bands,
+        }
+    }
+
     /// The speed it runs at beside a far end at `far`: its own (`apart`) where that is rest, its
     /// block from or to there planned apart from the slower side (beside a seed-4 stop, a
     /// 0.96 mm arc costed at its 0.21 mm neighbour's 7.9 mm/s gained 25 ms from a 3.8 mm/s
@@ -154,11 +163,7 @@ pub(super) fn stop_below(sides: &[Side; 2], bound: f64) -> bool {
 /// `cost` with side `s`'s part of `local_cost` at cut `d` and speed `v`.
 fn with_side(mut cost: f64, d: f64, v: f64, s: &Side) -> f64 {
     let v_side = s.v.max(f64::MIN_POSITIVE);
-    let banded = Banded {
-        kind: ProfileKind::Scurve7,
-        top: &s.top,
-        bands: &s.bands,
-    };
+    let banded = s.banded();
     let rest = (s.length - d).max(0.0);
     if let Some(far) = s.far {
         // At `beside`'s speed, its time against the same constant (its length at `s.v`).
@@ -201,11 +206,7 @@ pub(super) fn entry_drop(held: &Span, s: &Side, d: f64, v: f64) -> f64 {
     if scurve7::ramp_distance(v.max(0.0), e, &tightest) <= rest {
         return 0.0;
     }
-    let banded = Banded {
-        kind: ProfileKind::Scurve7,
-        top: &s.top,
-        bands: &s.bands,
-    };
+    let banded = s.banded();
     let r = banded.max_entry(rest, v.max(0.0));
     if r >= e {
         return 0.0;

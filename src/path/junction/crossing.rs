@@ -16,8 +16,8 @@ impl Search<'_> {
         if rest >= to_slower {
             return false;
         }
-        let slower = self.sides[0].v.min(self.sides[1].v);
-        let v = ceiling().min(self.sides[0].v).min(self.sides[1].v);
+        let slower = self.slower();
+        let v = ceiling().min(slower);
         // It needs more than `rest` to reach v: what it reaches over `rest` is below v (at the
         // slower side's speed it needs `to_slower`).
         v == slower || rise.time_distance(v).1 > rest

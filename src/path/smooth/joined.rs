@@ -40,6 +40,11 @@ pub(in crate::path) fn joined_loss(
         top: fast.0,
         bands: fast.1,
     };
+    let slow_banded = Banded {
+        kind: ProfileKind::Scurve7,
+        top: slow.0,
+        bands: slow.1,
+    };
     // The block's rise from v_slow to its peak is the ramp through the junction's upper part
     // (v_slow is finite and above 0 here, the block's entry as planned).
     let (duration, v_peak, rise) = scurve7_banded::plan_time_rise(&banded, l_fast, v_slow, v_slow, v_fast);
@@ -56,12 +61,7 @@ pub(in crate::path) fn joined_loss(
     let (slow_ramp, slow_reach) = if slow == fast {
         (t_slow, fast_reach)
     } else {
-        let slow = Banded {
-            kind: ProfileKind::Scurve7,
-            top: slow.0,
-            bands: slow.1,
-        };
-        scurve7_banded::ramp(&slow, 0.0, v_slow)
+        scurve7_banded::ramp(&slow_banded, 0.0, v_slow)
     };
     // Where each side reaches the slower one's speed within its length even from rest at its
     // far end, no ramp need pass through the junction: it is run at that speed, and a block end
@@ -98,12 +98,7 @@ pub(in crate::path) fn joined_loss(
     // Each side's limits may be the tighter at different speeds: the ramp within the worst of
     // both at every speed, where that may decide (`MIXED_RAMP`).
     if slow != fast && loss + over(tighter) <= apart && loss + over(MIXED_RAMP * tighter) > apart {
-        let slow = Banded {
-            kind: ProfileKind::Scurve7,
-            top: slow.0,
-            bands: slow.1,
-        };
-        tighter = tighter.max(banded.worst_ramp(&slow, v_slow).unwrap_or(0.0));
+        tighter = tighter.max(banded.worst_ramp(&slow_banded, v_slow).unwrap_or(0.0));
     }
     let tighter_ramp = over(tighter);
     (loss + tighter_ramp <= apart).then_some(loss)
