@@ -351,3 +351,28 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0303, 0.0807]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 8, the worst of seeds 1–12): two tiny arcs, then
+/// three lines of 0.52, 0.79 and 0.76 mm on Y's 369 mm/s². At 1.46 times the tolerance the
+/// lines were fitted as one curve whose top band leaves 6 mm/s²: from the arcs' 1.2 mm/s it ran
+/// slower than the lines through their corners at 22 and 25 mm/s, though far faster than the
+/// lines each from rest to rest (0.1570 s against 0.1508 s; +2.6 % with two more arcs after the
+/// lines). A curve over several moves more than `BETWEEN_SLACK` times slower than its lines
+/// between its ends' speeds is not kept (path/fit/baseline.rs, `slower_between`).
+#[test]
+fn a_larger_tolerance_does_not_fit_lines_between_slow_corners_as_a_curve_slower_than_their_corners() {
+    let axes = [
+        [2453.62, 2761.33, 121693982.7],
+        [12504.73, 368.573, 886060.25],
+        [12565.26, 1180.570, 869827379.6],
+    ];
+    let program = "G21 G90 G17 G64 F14418.3
+G3 X0.0189 Y0.0185 Z0.0000 I0.0000 J0.0189
+G3 X0.0124 Y0.0209 Z0.0013 I-0.0037 J0.0001
+G1 X-0.3114 Y-0.3688 Z-0.1244
+G1 X-0.8139 Y-0.9736 Z-0.1530
+G1 X-1.4315 Y-1.3812 Z0.0101
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.052569, 0.076825]);
+}
