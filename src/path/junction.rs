@@ -11,7 +11,7 @@ mod cost;
 mod crossing;
 mod estimate;
 
-pub(super) use estimate::{corner_ceiling, corner_speed};
+pub(super) use estimate::{corner_ceiling, corner_speed, end_reach};
 
 use super::chain::{Curve, CurveLimits, Own};
 use super::cover::{lead, Guards, Leads, UNMEASURED};

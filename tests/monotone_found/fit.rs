@@ -283,6 +283,30 @@ M30
     assert_larger_tolerance_not_longer(program, axes, [0.005997, 0.023213]);
 }
 
+/// A case `tolerance_failure_rate` found (seed 12): after an arc, a 0.34 mm line and a 40 µm one
+/// (a sharp corner after them) are one run. At 1.08 times the tolerance the curve over both fits
+/// within their chords, starting on the circle through the run's knots: it met the arc at
+/// 8.4 mm/s where the first line meets it at 11.6, and the arc braked 6 ms longer for it
+/// (0.4336 s against 0.4273 s; +0.75 % in the program found). Such a curve is not kept where
+/// its corner ceiling is clearly the lower and the lines pass their inner corner no slower than
+/// the curve's slower end (path/fit.rs, `slower_entry`).
+#[test]
+fn a_larger_tolerance_does_not_fit_a_run_first_lines_that_turn_from_the_span_before() {
+    let axes = [
+        [1133.48, 520.86, 286155.47],
+        [9149.49, 2886.55, 106089.99],
+        [11501.58, 266.03, 155564102.87],
+    ];
+    let program = "G21 G90 G17 G64 F5867.0
+G3 X0.0006 Y3.9736 Z1.6241 I0.0018 J1.9868
+G1 X-0.3358 Y3.9734 Z1.5620
+G1 X-0.3753 Y3.9734 Z1.5635
+G1 X-0.3723 Y3.9921 Z1.5615
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0162, 0.0175]);
+}
+
 /// A case `tolerance_failure_rate` found (seed 6): a 1.40 mm line turning 6° into a 0.38 mm one
 /// that ends the program on Z's jerk of 2701 mm/s³. At 1.7 times the tolerance the last line
 /// was fitted alone as a curve whose top band has 148 mm/s² where the line has 536: kept, as a

@@ -1,8 +1,11 @@
 //! A corner's speed estimated without its cut search: the transition at the apex cut, for the
-//! fit's baselines (`corner_speed`) and for the corner before it (`corner_ceiling`).
+//! fit's baselines (`corner_speed`) and for the corner before it (`corner_ceiling`); and the
+//! speed a span reaches at its end (`end_reach`).
 
+use super::cost::side;
 use super::{apex_cut, corner, cut_shape};
 use crate::config::Machine;
+use crate::feed::scurve7_banded::Rise;
 use crate::geometry::{add, dot, norm, scale, sub, Line};
 use crate::path::chain::Own;
 use crate::path::hermite::{Hermite, Jet};
@@ -60,4 +63,18 @@ pub(in crate::path) fn corner_ceiling(held: &Span, next: &Span, shared: bool, m:
     }
     let feed = held.last.feed.min(next.first.feed);
     Own::ceiling_of(&cut_shape(held, next, d, 1.0), feed, m)
+}
+
+/// The speed `held` reaches at its end: its own, within its rise from its entry over its length
+/// (as the junction after it bounds that side).
+pub(in crate::path) fn end_reach(held: &Span, m: &Machine) -> f64 {
+    let s = side(&mut held.clone(), held.last.feed, m);
+    match held.entry {
+        Some(v) if v < s.v => {
+            let b = s.banded();
+            let mut slot = None;
+            s.v.min(Rise::build_in(&mut slot, &b, v.max(0.0)).max_speed(s.length))
+        }
+        _ => s.v,
+    }
 }
