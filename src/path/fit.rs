@@ -9,9 +9,10 @@
 //! (`slower_from_rest`), nor, ending the run, slower than they are to its corner with the line
 //! after it and that line on (`slower_to_exit`), nor, over several moves at an end of the run,
 //! slower than its lines between the corners at its ends (`slower_between`), nor, over the
-//! first line of a run that was split, meeting the span before at a lower corner ceiling than
-//! that line (`slower_entry`); otherwise it is split at a vertex, down to the programmed line.
-//! Those times are in fit/baseline.rs.
+//! first line of a run that was split, or its first two moves, meeting the span before at a
+//! lower corner ceiling than that line, or over a whole run before a stop, meeting it lower and
+//! slower from there to rest than its lines through their corners (`slower_entry`); otherwise it
+//! is split at a vertex, down to the programmed line. Those times are in fit/baseline.rs.
 //!
 //! Moves that continue one line (`continues`: a G64 Q line split at its merged vertices for the
 //! blocks it reports, CAM output that splits a straight cut) are one line here: their inner
@@ -30,8 +31,8 @@ use crate::config::Machine;
 use crate::geometry::{add, cross, distance_to_segment, dot, norm, scale, sub, unit, Line, Source};
 use crate::Vec3;
 use baseline::{
-    corners_time, exit_ceilings, its_line_time, slower_between, slower_from_rest, slower_than_its_line,
-    slower_than_stops, slower_to_exit, stops_time,
+    corners_time, exit_ceilings, its_line_time, slower_between, slower_from_entry, slower_from_rest,
+    slower_than_its_line, slower_than_stops, slower_to_exit, stops_time,
 };
 use std::cell::Cell;
 
@@ -348,7 +349,7 @@ impl SmoothBuilder {
             if slower_from_rest(h.length(), &own, 0.0, from_rest) {
                 return None;
             }
-            if self.slower_entry(span, h, m) {
+            if self.slower_entry(span, h, &own, m) {
                 return None;
             }
             let run_end = span.from == 0 || span.to == span.run.len();
@@ -392,11 +393,13 @@ impl SmoothBuilder {
     /// corner, fitted alone at 3.9 times the tolerance, met the arc before it at 11.0 mm/s where
     /// the line meets it at 18.9 (+1.06 %); a 0.34 mm line and a 40 µm one after an arc, fitted
     /// as one curve at 1.08 times the tolerance, met it at 8.4 mm/s where the line meets it at
-    /// 11.6 (+0.75 %; both in tests/monotone_found.rs). Not over more moves: LinuxCNC's
-    /// random_lines_0.001in then lost curves over up to 38 (+1.2 %), whose gains inside the
-    /// corner speeds miss.
-    fn slower_entry(&self, span: Fit, h: &Hermite, m: &Machine) -> bool {
-        if span.from != 0 || span.to > 2 || span.run.len() < 2 {
+    /// 11.6 (+0.75 %; both in tests/monotone_found.rs). Not over more moves (LinuxCNC's
+    /// random_lines_0.001in then lost curves over up to 38, +1.2 %, whose gains inside the
+    /// corner speeds miss), except a whole run before a stop that is also slower from there to
+    /// rest than its moves (`slower_from_entry`).
+    fn slower_entry(&self, span: Fit, h: &Hermite, own: &CurveLimits, m: &Machine) -> bool {
+        let whole = span.stop_after && span.to == span.run.len();
+        if span.from != 0 || span.run.len() < 2 || span.to > 2 && !whole {
             return false;
         }
         let Some([entry, straight]) = self.entry_ceilings(span, h, m) else {
@@ -405,9 +408,16 @@ impl SmoothBuilder {
         if span.to == 1 {
             return entry < straight;
         }
-        // Over several moves, only where it enters clearly more sharply than the line and than
-        // the span before reaches, and the lines pass every inner corner no slower than the
-        // curve passes its slower end: it then gains nothing inside for what it loses there.
+        // Over several moves, the lines may lose more at their own corners.
+        if whole && entry < straight && slower_from_entry(span, h.length(), own, [entry, straight], m) {
+            return true;
+        }
+        if span.to > 2 {
+            return false;
+        }
+        // Over two moves, only where it enters clearly more sharply than the line and than the
+        // span before reaches, and the lines pass their inner corner no slower than the curve
+        // passes its slower end: it then gains nothing inside for what it loses there.
         let Some(before) = &self.waiting else {
             return false;
         };

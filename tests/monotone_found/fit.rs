@@ -400,3 +400,28 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.052569, 0.076825]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 10): a 7.9 mm line, a 0.64 mm one and two tiny
+/// ones ending the program, on Z's jerk of 5125 mm/s³. At 2.8 times the tolerance the last line
+/// took the 16 µm one before it (path/micro.rs) and the fit took it and the 0.64 mm line as one
+/// curve, which met the long line at 9.4 mm/s where the 0.64 mm line meets it at 11.4 and ran
+/// its whole length at that speed (0.8223 s against 0.8052 s). A curve over a whole run before
+/// a stop that meets the span before at a lower ceiling than its first line, and is slower
+/// from there to rest than its lines through their corners, is not kept (path/fit.rs,
+/// `slower_entry`).
+#[test]
+fn a_larger_tolerance_does_not_fit_lines_before_a_stop_as_a_curve_that_meets_the_line_before_slower() {
+    let axes = [
+        [7895.16, 247.18, 129432.27],
+        [1980.50, 1888.72, 100733.55],
+        [10476.26, 1899.74, 5124.90],
+    ];
+    let program = "G21 G90 G17 G64 F683.9
+G1 X1.04 Y7.75 Z1.02
+G1 X1.1033 Y8.3699 Z1.1680
+G1 X1.1022 Y8.3858 Z1.1684
+G1 X1.1021 Y8.3870 Z1.1682
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0599, 0.1673]);
+}

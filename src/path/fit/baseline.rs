@@ -176,6 +176,29 @@ struct Exit {
     loss: f64,
 }
 
+/// Whether a curve of `length` within its limits `own`, over several moves that start its run
+/// and end it before a stop, is slower from its corner with the span before, `v_curve`, to rest
+/// than its moves from theirs, `v_line`, through their corners (`corners_time`): as
+/// `slower_to_exit` at the run's end. A 0.64 mm line and a 17 µm one (which took a 16 µm move at
+/// 2.8 times the tolerance) ending a program, fitted as one curve, met the line before at
+/// 9.4 mm/s where the line meets it at 11.4, and ran 0.66 mm at that speed (+0.64 %,
+/// tests/monotone_found/fit.rs).
+pub(super) fn slower_from_entry(
+    span: Fit,
+    length: f64,
+    own: &CurveLimits,
+    [v_curve, v_line]: [f64; 2],
+    m: &Machine,
+) -> bool {
+    let b = Banded {
+        kind: ProfileKind::Scurve7,
+        top: &own.limits,
+        bands: &own.bands,
+    };
+    let curve = scurve7_banded::plan_time(&b, length, v_curve.min(own.class), 0.0, own.class).0;
+    curve > corners_time_from(span, 0.0, [v_line, 0.0], m)
+}
+
 /// Whether a curve of `length` and top speed `class` is surely slower than its moves, whose
 /// `stops_time` is `stops`: its time at that speed above theirs. A curve over a long move and a
 /// short hook runs the whole move at the hook's speed (2.46 mm at 11 mm/s, where the line alone
