@@ -425,3 +425,30 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0599, 0.1673]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 7): after a 15 mm arc, lines of 9, 2.7, 19 and
+/// 25 µm with Z zig-zags of 5 µm, then a small arc. At 1.9 times the tolerance the third line
+/// took the two before it (path/micro.rs), so the run counted two moves instead of three and
+/// the middle of its end circle moved from the first line's end to the third's, at the bottom
+/// of a dip: the curve started turned down in Z, and the arc braked to 9.1 mm/s instead of
+/// 15.2 (0.3098 s against 0.3059 s). The end of a line that took tiny moves is not on that
+/// circle (path/fit.rs, `Vertices::end_circle_middle`).
+#[test]
+fn a_larger_tolerance_does_not_move_a_run_end_circle_to_the_end_of_a_line_that_took_tiny_moves() {
+    let axes = [
+        [12919.13, 2679.14, 22625245.08],
+        [1597.91, 2628.80, 3466096.19],
+        [1231.96, 1127.08, 1990881.34],
+    ];
+    let program = "G21 G90 G17 G64 F10252.4
+G1 X1.6778 Y-1.1751 Z-0.5529
+G3 X16.4362 Y-3.1049 Z0.9202 I10.8128 J25.2943
+G1 X16.4451 Y-3.1036 Z0.9199
+G1 X16.4478 Y-3.1032 Z0.9205
+G1 X16.4666 Y-3.1005 Z0.9162
+G1 X16.4909 Y-3.0970 Z0.9223
+G3 X16.5210 Y-3.0464 Z0.9223 I-0.0065 J0.0382
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0757, 0.1412]);
+}
