@@ -440,9 +440,9 @@ impl SmoothBuilder {
     /// Whether the curve over several moves at an end of its run is slower than its lines
     /// between the corners at its ends (`slower_between`): the run's corners with its neighbours
     /// where it ends the run (their ceilings, `entry_ceilings` and `exit_ceilings`), else the
-    /// vertex's corner between its lines. Asked of every span over several moves (not only at a
-    /// run's end): the same rates, 31 digest runs moved (3D_Chips +0.31 % at jerk 5e4), and the
-    /// CAM-like 10 k lines' instructions +4.1 %.
+    /// vertex's corner between its lines. Only at a run's end: asked of every span over several
+    /// moves it gave the same rates, and 3D_Chips +0.31 % at jerk 5e4 and +4.1 % instructions on
+    /// the CAM-like 10 k lines.
     fn slower_between_corners(&self, span: Fit, h: &Hermite, own: &CurveLimits, m: &Machine) -> bool {
         let inner = |k: usize| Some([span.vertices.corner_speed(span.run, k, m); 2]);
         let entry = match span.from {
