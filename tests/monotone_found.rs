@@ -415,3 +415,25 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.00437, 0.00929]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 10): an S-bend between two arcs each held to Y's
+/// velocity (30.9 mm/s). Every cut there costs the same at that speed, and the longest was
+/// kept, but the transition runs above it on its own: at 4 times the tolerance 6.8 mm up to
+/// 31.0 mm/s against the smaller tolerance's 5.7 mm up to 31.5 (0.7154 s against 0.7135 s). As
+/// cheap and with more to gain above that speed, a shorter cut is taken (path/junction/tie.rs,
+/// `Found::ties_faster`).
+#[test]
+fn a_larger_tolerance_does_not_keep_a_longer_transition_that_is_slower_on_its_own() {
+    let axes = [
+        [2915.48, 1951.52, 17296.73],
+        [1854.87, 1463.62, 8498225.56],
+        [11284.21, 2772.42, 609809.98],
+    ];
+    let program = "G21 G90 G17 G64 F7240.2
+G3 X0.5793 Y-6.9756 Z0.0000 I5.5304 J-3.0745
+G2 X-2.8149 Y-8.8566 Z0.0000 I-1.5436 J-1.2174
+G3 X-2.8361 Y-8.8631 Z0.0007 I-0.0055 J-0.0200
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0872, 0.3482]);
+}

@@ -10,6 +10,7 @@
 mod cost;
 mod crossing;
 mod estimate;
+mod tie;
 
 pub(super) use estimate::{corner_ceiling, corner_speed, end_reach};
 
@@ -455,7 +456,7 @@ impl Search<'_> {
             let mut solved = [None; 2];
             let v_ceiling = self.speed(d, own.ceiling(), &mut solved);
             last_ceiling.set(v_ceiling);
-            let prune = best.cost - SAVING + PRUNE_MARGIN * best.cost.abs();
+            let prune = best.cost + self.tie(best) + PRUNE_MARGIN * best.cost.abs();
             // Most of them are pruned by a bound of that cost from below (`cost_floor`), without
             // the banded ramps' solves.
             if cost_floor(d, shape.length(), v_ceiling, self.sides).is_some_and(|c| c >= prune) {
@@ -470,10 +471,12 @@ impl Search<'_> {
             // Where the neighbours cap both speeds alike, the cost is the one just found.
             let known = Some((v_ceiling, at_ceiling));
             let mut shorter = self.found(k, d, h, (v_max, own), share, known, &mut solved);
-            (shorter.cost < best.cost - SAVING).then_some(())?;
+            let cheaper = shorter.cost < best.cost - SAVING;
+            (cheaper || shorter.ties_faster(best) && self.apart(&shorter)).then_some(())?;
             // Only raises the cost: solved only where the cut would be taken without it.
             shorter.cost += entry_drop(self.held, &self.sides[0], d, shorter.at);
-            (shorter.cost < best.cost - SAVING).then_some(())?;
+            let still = shorter.cost < best.cost - SAVING;
+            (still || shorter.ties_faster(best) && (!cheaper || self.apart(&shorter))).then_some(())?;
             self.within(d, &shorter.h, &mut shorter.leads).then_some(())?;
             *best = shorter;
             Some(())
@@ -526,7 +529,8 @@ const OCTAVE: i32 = 4;
 const MAX_GRID: i32 = 400;
 
 /// Least saving (s) for which a shorter cut is taken: far below a tick, far above rounding (equal
-/// costs keep the longer cut).
+/// costs keep the longer cut, unless the shorter one gains this much more on its own:
+/// `Found::ties_faster`).
 const SAVING: f64 = 1e-6;
 /// Share of the best cut's cost by which a shorter cut's cost at its speed's ceiling must exceed
 /// it before the cut is dropped unsolved: far above the noise of the ramps' solves (`RAMP_FIT`),
