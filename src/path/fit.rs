@@ -52,6 +52,9 @@ const BALANCE: f64 = 3.0;
 /// 0.15 rad more once the hook was taken (+1.4 %, tests/monotone_found.rs); at 10 µm a random
 /// program in 6000 ran 3 % longer at a larger tolerance (seed 9), at 15 µm a digest run 0.4 %.
 const HOOK: f64 = 5e-6;
+/// Share of a curve's top speed below which the ceiling of the corner a run enters at counts as
+/// rest: a ramp from it takes about as long as from rest.
+const NEAR_REST: f64 = 0.1;
 /// Share of a run's length at either end where its middle vertex counted in moves bunches the
 /// end circle's points: its circle stands for that end alone. A larger tolerance let the last
 /// of four lines take a 4.8 µm move, and the middle moved from 0.45 mm into the 0.51 mm run to
@@ -329,7 +332,7 @@ impl SmoothBuilder {
         // Where such a run is split, a curve over one line after its first, left straight,
         // rises from their corner on its own ramps (`Fit::enters_below`), so is compared from
         // rest to rest.
-        let alone = moves.len() > 1 && span.from == 0 && span.to == span.run.len() && self.at_rest();
+        // So does one that enters at a corner it nearly stops at (`stands_alone`).
         // Its limits: its top speed first, which the first two tests take; its bands only for
         // the third, and where it is kept (those of a curve the first two reject are not needed).
         // Over one line between two corners of the run, the line's time does not take that
@@ -341,6 +344,7 @@ impl SmoothBuilder {
                 return None;
             }
             let class = own.speed(m);
+            let alone = self.stands_alone(span, class, m);
             let mut stops = stops_time(moves, 0.0, m);
             if alone {
                 stops = stops.min(corners_time(span, 0.0, 0.0, m));
@@ -466,17 +470,40 @@ impl SmoothBuilder {
         let moves = &span.run[span.from..span.to];
         let curve = Span::fitted(Piece::whole(Curve::Hermite(*h), first.line), moves);
         let straight = Span::single(Curve::Line(line_of(&first)), first);
+        Some([self.entry_ceiling(&curve, m)?, self.entry_ceiling(&straight, m)?])
+    }
+
+    /// Whether the moves, the whole run, stand alone: from rest after a stop, or entering at a
+    /// corner they nearly stop at (`enters_near_rest`) where they pass every corner between them
+    /// at the curve's top speed `class`. Two lines between a 10 µm arc (a 1.4 mm/s corner) and
+    /// a reversal, fitted as one curve from rest to rest, took 0.204 s where the lines through
+    /// their 23.4 mm/s corner take 0.187 (+0.46 %, tests/monotone_found/fit.rs).
+    fn stands_alone(&self, span: Fit, class: f64, m: &Machine) -> bool {
+        span.to - span.from > 1
+            && span.from == 0
+            && span.to == span.run.len()
+            && (self.at_rest()
+                || span.passes_corners(class, m) && self.enters_near_rest(span.run[0], class, m))
+    }
+
+    /// Whether the run's first move meets the span waiting at a corner whose ceiling is under
+    /// `NEAR_REST` of `class` (a reversal, a corner too tight to cut): the run then starts
+    /// about as from rest.
+    fn enters_near_rest(&self, first: Move, class: f64, m: &Machine) -> bool {
+        let straight = Span::single(Curve::Line(line_of(&first)), first);
+        self.entry_ceiling(&straight, m)
+            .is_some_and(|v| v < NEAR_REST * class)
+    }
+
+    /// The ceiling of the corner between the span waiting and `next`, as `junction` estimates
+    /// it: infinite where `next` continues that span, none where nothing waits.
+    fn entry_ceiling(&self, next: &Span, m: &Machine) -> Option<f64> {
         let before = self.waiting.as_ref()?;
-        // As `junction` estimates the corner; none where the span continues `before`.
+        if joined(before, next) {
+            return Some(f64::INFINITY);
+        }
         let shared = self.held.as_ref().is_some_and(|held| !joined(held, before));
-        let ceiling = |next: &Span| {
-            if joined(before, next) {
-                f64::INFINITY
-            } else {
-                corner_ceiling(before, next, shared, m)
-            }
-        };
-        Some([ceiling(&curve), ceiling(&straight)])
+        Some(corner_ceiling(before, next, shared, m))
     }
 }
 
@@ -531,7 +558,12 @@ impl Fit<'_> {
         self.to - self.from > 1
             && self.to == self.run.len()
             && self.stop_after
-            && (self.from + 1..self.to).all(|k| self.vertices.corner_speed(self.run, k, m) >= class)
+            && self.passes_corners(class, m)
+    }
+
+    /// Whether the moves pass each corner between them at `class` or faster.
+    fn passes_corners(&self, class: f64, m: &Machine) -> bool {
+        (self.from + 1..self.to).all(|k| self.vertices.corner_speed(self.run, k, m) >= class)
     }
 }
 

@@ -452,3 +452,28 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0757, 0.1412]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 8): a 1.15 mm line and a 2.43 mm one after a
+/// 10 µm arc, whose corner with the first line has a ceiling of 1.4 mm/s, and before a reversal.
+/// At 2.4 times the tolerance the two were fitted as one curve, kept against its lines each from
+/// rest to rest, though they pass their corner at 23.4 mm/s, the curve's top speed, and ramp
+/// faster (0.8834 s against 0.8663 s). A whole run that enters at a corner it nearly stops at is
+/// compared with its lines through their corners, as one from rest (path/fit.rs,
+/// `enters_near_rest`).
+#[test]
+fn a_larger_tolerance_does_not_fit_lines_after_a_near_stop_as_a_curve_slower_than_their_corner() {
+    let axes = [
+        [1402.6, 503.1, 578282697.25],
+        [7196.58, 3894.29, 18881339.8],
+        [3412.43, 772.3, 17493.9],
+    ];
+    let program = "G21 G90 G17 G64 F1405.7
+G0 X14.4005 Y0.0010 Z-2.4540
+G2 X14.4050 Y0.0112 Z-2.4540 I0.0177 J-0.0017
+G1 X15.1684 Y0.8582 Z-2.5966
+G1 X16.2673 Y2.9900 Z-2.2111
+G2 X16.2660 Y2.9895 Z-2.2111 I-0.0010 J0.0007
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0784, 0.1887]);
+}
