@@ -477,3 +477,26 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0784, 0.1887]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 9): a 0.49 mm line and a 0.07 mm one after a tiny
+/// arc, entering at 5 mm/s, before a 6.5 mm line. At 3.5 times the tolerance the two were fitted
+/// as one curve whose top speed, 25.2 mm/s, is below the lines' 25.6, which they keep through
+/// their corner and into the long line (0.3478 s against 0.3463 s). A corner under a fifth of
+/// the curve's speed counts as a stop (path/fit.rs, `NEAR_REST`).
+#[test]
+fn a_larger_tolerance_does_not_fit_lines_after_a_slow_corner_as_a_slower_curve() {
+    let axes = [
+        [1500.62, 982.97, 2722566.88],
+        [1399.6, 3291.22, 38761642.82],
+        [2341.95, 4624.28, 223732827.9],
+    ];
+    let program = "G21 G90 G17 G64 F12356.5
+G0 X-0.3875 Y0.3686 Z0.0000
+G3 X-0.3778 Y0.3227 Z0.0000 I0.0140 J-0.0210
+G1 X0.1079 Y0.2382 Z-0.0634
+G1 X0.1691 Y0.2245 Z-0.0811
+G1 X6.4892 Y-1.1876 Z0.3706
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.00556, 0.01928]);
+}
