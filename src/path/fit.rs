@@ -339,6 +339,10 @@ impl SmoothBuilder {
         // the third, and where it is kept (those of a curve the first two reject are not needed).
         // Over one line between two corners of the run, the line's time does not take that
         // speed: where even its ceiling is slower, the speed is not solved.
+        // Set where the curve is slower than its lines through their corners: they then run
+        // straight, not split into curves over parts of them, which gain nothing at corners the
+        // lines pass at their ceilings.
+        let straight = std::cell::Cell::new(false);
         let kept = |h: &Hermite| {
             let mut own = Own::of(h, first.feed, m);
             let inner = its_line_time(span, None, m);
@@ -370,6 +374,7 @@ impl SmoothBuilder {
             }
             let run_end = span.from == 0 || span.to == span.run.len();
             if moves.len() > 1 && run_end && !alone && self.slower_between_corners(span, h, &own, m) {
+                straight.set(true);
                 return None;
             }
             (!slower_to_exit(span, h, &own, [rest_to_rest, alone], m)).then_some(own)
@@ -381,6 +386,10 @@ impl SmoothBuilder {
             self.junction(span, m, out);
         } else if one_line {
             self.junction(Span::line(moves), m, out);
+        } else if straight.get() {
+            moves
+                .chunks(1)
+                .for_each(|mv| self.junction(Span::line(mv), m, out));
         } else {
             let mid = span.from + split_vertex(moves);
             let jm = Some(span.vertices.jet(mid, span.from, span.to));

@@ -500,3 +500,25 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.00556, 0.01928]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 2): a 12 µm arc from rest, then lines of 0.57 and
+/// 0.66 mm ending the program, on Z's jerk of 1746 mm/s³. At 2.1 times the tolerance the lines
+/// were fitted as one curve, rejected as slower than the lines through their 8.8 mm/s corner,
+/// then split into two curves over one line each, 1.5 % slower than the lines (0.2159 s against
+/// 0.2143 s). Lines a curve over them is slower than between its ends' speeds run straight
+/// (path/fit.rs, `fit`).
+#[test]
+fn a_larger_tolerance_does_not_split_lines_a_curve_is_slower_than_into_curves_over_each() {
+    let axes = [
+        [1591.29, 207.248, 60012988.8],
+        [12560.24, 3222.84, 17029.26],
+        [2887.60, 834.746, 1746.31],
+    ];
+    let program = "G21 G90 G17 G64 F1024.3
+G2 X0.0089 Y0.0031 Z-0.0013 I0.0366 J-0.0924
+G1 X0.5802 Y0.0181 Z-0.0539
+G1 X1.2395 Y-0.1107 Z-0.0030
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.0163, 0.0337]);
+}
