@@ -342,7 +342,7 @@ impl SmoothBuilder {
         // Set where the curve is slower than its lines through their corners: they then run
         // straight, not split into curves over parts of them, which gain nothing at corners the
         // lines pass at their ceilings.
-        let straight = std::cell::Cell::new(false);
+        let straight = Cell::new(false);
         let kept = |h: &Hermite| {
             let mut own = Own::of(h, first.feed, m);
             let inner = its_line_time(span, None, m);
@@ -387,9 +387,10 @@ impl SmoothBuilder {
         } else if one_line {
             self.junction(Span::line(moves), m, out);
         } else if straight.get() {
-            moves
-                .chunks(1)
-                .for_each(|mv| self.junction(Span::line(mv), m, out));
+            // Each line on its own; moves that continue one line stay one.
+            for line in moves.chunk_by(continues) {
+                self.junction(Span::line(line), m, out);
+            }
         } else {
             let mid = span.from + split_vertex(moves);
             let jm = Some(span.vertices.jet(mid, span.from, span.to));
