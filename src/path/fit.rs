@@ -32,7 +32,7 @@ use crate::geometry::{add, cross, distance_to_segment, dot, norm, scale, sub, un
 use crate::Vec3;
 use baseline::{
     corners_time, exit_ceilings, its_line_time, slower_between, slower_from_entry, slower_from_rest,
-    slower_than_its_line, slower_than_stops, slower_to_exit, stops_time,
+    slower_split_exit, slower_than_its_line, slower_than_stops, slower_to_exit, stops_time,
 };
 use std::cell::Cell;
 
@@ -369,7 +369,7 @@ impl SmoothBuilder {
             if slower_from_rest(h.length(), &own, 0.0, from_rest) {
                 return None;
             }
-            if self.slower_entry(span, h, &own, m) {
+            if self.slower_entry(span, h, &own, m) || slower_split_exit(span, h, m) {
                 return None;
             }
             let run_end = span.from == 0 || span.to == span.run.len();
