@@ -437,3 +437,25 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.0872, 0.3482]);
 }
+
+/// A case `tolerance_failure_rate` found (seed 12): at 3 times the tolerance the transition after
+/// a 22.1 mm arc from rest runs at the arc's speed (28.6 mm/s), so joining them looked free, but
+/// the arc then ramps from rest within the transition's top band (864 mm/s², 14 245 mm/s³
+/// against its own 995 and 18 297): 1.2 times as slow, under what counts between pieces of one
+/// speed, and 3.3 ms longer (0.920 s against 0.918 s). A chain that starts from rest counts its
+/// ramp from it within the joined limits by any margin (path/smooth/joined.rs, `joined_loss`).
+#[test]
+fn a_larger_tolerance_does_not_join_an_arc_from_rest_to_a_transition_that_ramps_it_slower() {
+    let axes = [
+        [2252.20, 1172.46, 4067159.46],
+        [13840.13, 1012.33, 21071.04],
+        [3585.83, 1157.13, 1337099.54],
+    ];
+    let program = "G21 G90 G17 G64 F1715.7
+G2 X13.9098 Y-13.9815 Z2.2608 I0.5216 J-13.3911
+G1 X13.8747 Y-15.2786 Z2.3203
+G3 X13.8779 Y-15.2914 Z2.3234 I0.0247 J-0.0007
+M30
+";
+    assert_larger_tolerance_not_longer(program, axes, [0.002865, 0.00857]);
+}

@@ -196,6 +196,12 @@ pub struct SmoothBuilder {
     chain_sigma: f64,
     /// The limits of the chain's only piece, while it has one (computed when it was added).
     chain_single: Option<CurveLimits>,
+    /// Whether the chain starts from rest (`joined_loss`), and whether the last chain closed did
+    /// end at rest (the next one then starts from it).
+    #[serde(default)]
+    chain_from_rest: bool,
+    #[serde(default)]
+    ended_at_rest: bool,
     /// The last span stage 1 gave, waiting for the next one or a stop (its exit) before its
     /// junction with the held span.
     pub(super) waiting: Option<Span>,
@@ -230,6 +236,8 @@ impl SmoothBuilder {
             chain_straight: true,
             chain_sigma: 1.0,
             chain_single: None,
+            chain_from_rest: true,
+            ended_at_rest: true,
             waiting: None,
         }
     }
@@ -400,7 +408,7 @@ impl SmoothBuilder {
                     (piece.length(), class),
                     (&fast.0, &fast.1),
                     (&slow.0, &slow.1),
-                    stop,
+                    (self.chain_from_rest, stop),
                 )
             } else {
                 None
@@ -418,6 +426,7 @@ impl SmoothBuilder {
                 self.cells.clear();
                 self.chain_sigma = 1.0;
                 self.chain_single = own;
+                self.chain_from_rest = std::mem::take(&mut self.ended_at_rest);
             }
             self.chain_sigma = self.chain_sigma.max(sigma);
             self.chain_class = self.chain_class.min(class);
@@ -434,6 +443,7 @@ impl SmoothBuilder {
     }
 
     fn close_chain(&mut self, v_end_max: f64, m: &Machine, out: &mut Vec<PathBlock>) {
+        self.ended_at_rest |= v_end_max == 0.0;
         if self.chain.is_empty() {
             return;
         }

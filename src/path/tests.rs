@@ -454,7 +454,7 @@ fn a_faster_piece_with_much_tighter_limits_does_not_join() {
         (1.9e-3, 0.0615),
         (&transition, &none),
         (&arc, &none),
-        false,
+        (false, false),
     );
     assert_eq!(joined, None);
 }

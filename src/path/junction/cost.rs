@@ -119,8 +119,8 @@ pub(super) fn joined_sides(sides: &mut [Side; 2]) {
     let (slow, fast) = if sides[0].v <= sides[1].v { (0, 1) } else { (1, 0) };
     let (s, f) = (&sides[slow], &sides[fast]);
     if s.curved && f.curved && s.feed == f.feed && f.v > s.v {
-        let ramps = ((&f.top, &f.bands), (&s.top, &s.bands));
-        if joined_loss(0.0, (s.length, s.v), (f.length, f.v), ramps.0, ramps.1, false).is_some() {
+        let (ramps, rest) = (((&f.top, &f.bands), (&s.top, &s.bands)), (false, false));
+        if joined_loss(0.0, (s.length, s.v), (f.length, f.v), ramps.0, ramps.1, rest).is_some() {
             sides[fast].v = sides[slow].v;
         }
     }

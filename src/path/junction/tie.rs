@@ -64,7 +64,7 @@ impl Search<'_> {
             } else {
                 (ours, theirs)
             };
-            joined_loss(0.0, chain, piece, fast, slow, false).is_none()
+            joined_loss(0.0, chain, piece, fast, slow, (false, false)).is_none()
         })
     }
 }
