@@ -459,3 +459,31 @@ M30
 ";
     assert_larger_tolerance_not_longer(program, axes, [0.002865, 0.00857]);
 }
+
+/// A case `limit_failure_rate` found (seed 11, here at 1.5 times Z's acceleration): a 0.23 mm arc
+/// slows to 0.7 mm/s for the sharp corner after it, and the higher limit joined it to the
+/// 0.076 mm transition before it, whose top band left 148 mm/s² instead of the arc's 238: it
+/// ramped nearly to rest within that and ended 0.26 ms later (0.0948 s against 0.0946 s). A
+/// piece that ends under a tenth of its speed joins a chain as one before a stop does
+/// (path/smooth.rs, `NEARLY_STOPS`; path/smooth/joined.rs, `joined_loss`).
+#[test]
+fn a_higher_acceleration_limit_does_not_join_an_arc_that_nearly_stops_to_a_slower_transition() {
+    let program = "G21 G90 G17 G64 F10054.9
+G1 X0.9745 Y0.0000 Z-0.2122
+G3 X1.1175 Y0.0209 Z-0.2177 I0.0000 J0.4990
+G1 X1.1971 Y0.0447 Z-0.1988
+G2 X1.4156 Y-0.0649 Z-0.2312 I0.0511 J-0.1708
+G1 X1.4159 Y-0.0665 Z-0.2312
+M30
+";
+    let axes = |z_acceleration: f64| {
+        [
+            [12705.05, 2791.84, 369580.11],
+            [10706.94, 942.85, 351031.06],
+            [2893.89, z_acceleration, 10460309.26],
+        ]
+    };
+    let low = time(program, &found_machine(0.006235, axes(924.65)));
+    let high = time(program, &found_machine(0.006235, axes(1386.97)));
+    assert!(high <= low * (1.0 + SLACK), "{high} s > {low} s");
+}

@@ -16,7 +16,8 @@ use crate::feed::{scurve7_banded, Limits, ProfileKind};
 /// pieces lose to it, added up over the chain, stays within that, also counting the slower
 /// ramp within the tighter of the two sides' limits (`slow`, `fast`; the chain's are the worst
 /// of its pieces': a 16 µm arc from rest joined to a transition climbing in Z ramped at
-/// 45 mm/s² instead of 114; `rest`: the chain starts from rest, a stop follows the piece).
+/// 45 mm/s² instead of 114; `rest`: the chain starts from rest, a stop (or nearly) follows the
+/// piece).
 /// Decided on their times, the two ways cost about the same where the choice changes with a
 /// limit.
 pub(in crate::path) fn joined_loss(
