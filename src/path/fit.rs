@@ -11,11 +11,10 @@
 //! slower than its lines between the corners at its ends (`slower_between`), nor, over the
 //! first line of a run that was split, or its first two moves, meeting the span before at a
 //! lower corner ceiling than that line, or over a whole run before a stop, meeting it lower and
-//! slower from there to rest than its lines through their corners (`slower_entry`), nor, over
-//! one line that ends where its run was split, meeting the next line at a lower corner ceiling
-//! than that line (`slower_split_exit`); otherwise it is split at a vertex, down to the
-//! programmed line, or, where it is slower than its lines between its corners, left as those
-//! lines. Those times are in fit/baseline.rs, the corners at the run's ends in fit/ends.rs.
+//! slower from there to rest than its lines through their corners (`slower_entry`); otherwise
+//! it is split at a vertex, down to the programmed line, or, where it is slower than its lines
+//! between its corners, left as those lines. Those times are in fit/baseline.rs, the corners at
+//! the run's ends in fit/ends.rs.
 //!
 //! Moves that continue one line (`continues`: a G64 Q line split at its merged vertices for the
 //! blocks it reports, CAM output that splits a straight cut) are one line here: their inner
@@ -38,7 +37,6 @@ use baseline::{
     corners_time, its_line_time, slower_from_rest, slower_than_its_line, slower_than_stops, slower_to_exit,
     stops_time,
 };
-use ends::slower_split_exit;
 use std::cell::Cell;
 
 /// Parts of each chord's range whose control points are checked.
@@ -365,7 +363,7 @@ impl SmoothBuilder {
             if slower_from_rest(h.length(), &own, 0.0, from_rest) {
                 return None;
             }
-            if self.slower_entry(span, h, &own, m) || slower_split_exit(span, h, m) {
+            if self.slower_entry(span, h, &own, m) {
                 return None;
             }
             let run_end = span.from == 0 || span.to == span.run.len();

@@ -283,34 +283,6 @@ M30
     assert_larger_tolerance_not_longer(program, axes, [0.005997, 0.023213]);
 }
 
-/// A case `tolerance_failure_rate` found (seed 9): after three arcs, a run of five short lines
-/// is split. At 2.67 times the tolerance a curve over one of its lines, ending at the split
-/// vertex on the jet the next half starts from, met the next line, left straight, at a lower
-/// corner ceiling than the line meets it (1.375 s against 1.366 s; +0.21 % in the program
-/// found). Such a curve is not kept (path/fit.rs, `slower_split_exit`): as `slower_entry` at
-/// the run's first line.
-#[test]
-fn a_larger_tolerance_does_not_fit_a_split_run_line_that_turns_into_the_next_line() {
-    let axes = [
-        [2479.76, 790.874, 16687.80],
-        [4334.17, 440.833, 3978664.5],
-        [7976.21, 942.440, 421539764.0],
-    ];
-    let program = "G21 G90 G17 G64 F631.4
-G1 X-5.6507 Y-7.6856 Z0.0257
-G2 X-5.6766 Y-7.1061 Z-0.0066 I0.1446 J0.2968
-G2 X-5.6671 Y-7.1044 Z-0.0052 I0.0069 J-0.0114
-G2 X-4.7297 Y-7.3432 Z-0.0052 I-1.7619 J-8.8764
-G1 X-4.5881 Y-7.4036 Z-0.0297
-G1 X-4.3615 Y-7.5003 Z0.0255
-G1 X-4.3508 Y-7.5049 Z0.0220
-G1 X-4.1095 Y-7.6078 Z0.0014
-G1 X-4.0003 Y-7.6735 Z0.0194
-M30
-";
-    assert_larger_tolerance_not_longer(program, axes, [0.003952, 0.010562]);
-}
-
 /// A case `tolerance_failure_rate` found (seed 12): after an arc, a 0.34 mm line and a 40 µm one
 /// (a sharp corner after them) are one run. At 1.08 times the tolerance the curve over both fits
 /// within their chords, starting on the circle through the run's knots: it met the arc at

@@ -171,23 +171,3 @@ pub(super) fn exit_ceilings(span: Fit, h: &Hermite, m: &Machine) -> Option<[f64;
         corner_ceiling(&straight, &after, true, m),
     ])
 }
-
-/// Whether a curve over one line that ends at a vertex of its run, where the run was split,
-/// meets the run's next line at a lower corner ceiling (`corner_ceiling`) than its line does: as
-/// `slower_entry` over a run's first line, at the other end. With a margin on the line's
-/// ceiling (the transition from a curve's end can run below its ceiling) more cases were fixed,
-/// but at 1.03 and more curves over tangent lines were lost (LinuxCNC's tangent_lines_smooth,
-/// +11 %).
-pub(super) fn slower_split_exit(span: Fit, h: &Hermite, m: &Machine) -> bool {
-    if span.to - span.from != 1 || span.to >= span.run.len() {
-        return false;
-    }
-    let (last, next) = (span.run[span.from], span.run[span.to]);
-    let after = Span::single(Curve::Line(line_of(&next)), next);
-    let curve = Span::fitted(
-        Piece::whole(Curve::Hermite(*h), last.line),
-        &span.run[span.from..span.to],
-    );
-    let straight = Span::single(Curve::Line(line_of(&last)), last);
-    corner_ceiling(&curve, &after, true, m) < corner_ceiling(&straight, &after, true, m)
-}
