@@ -264,7 +264,7 @@ M30
 /// the tolerance the first line is fitted alone as a curve starting on the circle, turned from
 /// the arc, which it met at 11.0 mm/s where the line meets it at 18.9 (here 1.044 s against
 /// 0.995 s; +1.06 % in the program found). A curve over the first line of a split run that
-/// meets the span before at a lower corner ceiling than its line is not kept (path/fit.rs,
+/// meets the span before at a lower corner ceiling than its line is not kept (path/fit/ends.rs,
 /// `slower_entry`).
 #[test]
 fn a_larger_tolerance_does_not_fit_a_split_run_first_line_that_turns_from_the_span_before() {
@@ -289,7 +289,7 @@ M30
 /// 8.4 mm/s where the first line meets it at 11.6, and the arc braked 6 ms longer for it
 /// (0.4336 s against 0.4273 s; +0.75 % in the program found). Such a curve is not kept where
 /// its corner ceiling is clearly the lower and the lines pass their inner corner no slower than
-/// the curve's slower end (path/fit.rs, `slower_entry`).
+/// the curve's slower end (path/fit/ends.rs, `slower_entry`).
 #[test]
 fn a_larger_tolerance_does_not_fit_a_run_first_lines_that_turn_from_the_span_before() {
     let axes = [
@@ -407,7 +407,7 @@ M30
 /// curve, which met the long line at 9.4 mm/s where the 0.64 mm line meets it at 11.4 and ran
 /// its whole length at that speed (0.8223 s against 0.8052 s). A curve over a whole run before
 /// a stop that meets the span before at a lower ceiling than its first line, and is slower
-/// from there to rest than its lines through their corners, is not kept (path/fit.rs,
+/// from there to rest than its lines through their corners, is not kept (path/fit/ends.rs,
 /// `slower_entry`).
 #[test]
 fn a_larger_tolerance_does_not_fit_lines_before_a_stop_as_a_curve_that_meets_the_line_before_slower() {
@@ -458,7 +458,7 @@ M30
 /// At 2.4 times the tolerance the two were fitted as one curve, kept against its lines each from
 /// rest to rest, though they pass their corner at 23.4 mm/s, the curve's top speed, and ramp
 /// faster (0.8834 s against 0.8663 s). A whole run that enters at a corner it nearly stops at is
-/// compared with its lines through their corners, as one from rest (path/fit.rs,
+/// compared with its lines through their corners, as one from rest (path/fit/ends.rs,
 /// `enters_near_rest`).
 #[test]
 fn a_larger_tolerance_does_not_fit_lines_after_a_near_stop_as_a_curve_slower_than_their_corner() {
@@ -482,7 +482,7 @@ M30
 /// arc, entering at 5 mm/s, before a 6.5 mm line. At 3.5 times the tolerance the two were fitted
 /// as one curve whose top speed, 25.2 mm/s, is below the lines' 25.6, which they keep through
 /// their corner and into the long line (0.3478 s against 0.3463 s). A corner under a fifth of
-/// the curve's speed counts as a stop (path/fit.rs, `NEAR_REST`).
+/// the curve's speed counts as a stop (path/fit/ends.rs, `NEAR_REST`).
 #[test]
 fn a_larger_tolerance_does_not_fit_lines_after_a_slow_corner_as_a_slower_curve() {
     let axes = [
