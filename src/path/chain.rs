@@ -7,8 +7,8 @@ use super::arc::{curve_bands, curve_top_speed, Frame, TopSpeeds};
 use super::hermite::{Hermite, Unbounded, BOUND_PIECES};
 use super::max_bounds;
 use crate::config::Machine;
-use crate::feed::bands::Bands;
-use crate::feed::Limits;
+use crate::feed::bands::{Banded, Bands};
+use crate::feed::{Limits, ProfileKind};
 use crate::geometry::{norm, Arc, Geo, Line};
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -218,6 +218,17 @@ pub struct CurveLimits {
     pub limits: Limits,
     pub bands: Bands,
     pub class: f64,
+}
+
+impl CurveLimits {
+    /// Its limits and bands as the banded S-curve plans a block within them.
+    pub(super) fn banded(&self) -> Banded<'_> {
+        Banded {
+            kind: ProfileKind::Scurve7,
+            top: &self.limits,
+            bands: &self.bands,
+        }
+    }
 }
 
 /// The limits and speed bands of a piece (or chain) with derivative bound cells `cells`, capped

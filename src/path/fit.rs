@@ -227,11 +227,7 @@ impl SmoothBuilder {
         let jet0 = self.run_jet.take();
         let Some(first) = run.first().copied() else { return };
         if run.len() == 1 && jet0.is_none() {
-            let curve = match first.source {
-                Source::Arc(a) => Curve::Arc(a),
-                Source::Line(l) => Curve::Line(l),
-            };
-            self.junction(Span::single(curve, first), m, out);
+            self.junction(Span::programmed(first), m, out);
             return;
         }
         let vertices = Vertices::of(&run);
@@ -325,10 +321,10 @@ impl SmoothBuilder {
         // 16 µm line and a 0.95 mm one pass theirs at 2.7 mm/s: against a stop there, a curve
         // over both was kept that ran 1.5 % slower); so would the moves that end a run before a
         // stop where they pass all their corners at the curve's top speed (`Fit::passes_to_stop`).
+        // So does a whole run that enters at a corner it nearly stops at (`stands_alone`).
         // Where such a run is split, a curve over one line after its first, left straight,
         // rises from their corner on its own ramps (`Fit::enters_below`), so is compared from
         // rest to rest.
-        // So does one that enters at a corner it nearly stops at (`stands_alone`).
         // Its limits: its top speed first, which the first two tests take; its bands only for
         // the third, and where it is kept (those of a curve the first two reject are not needed).
         // Over one line between two corners of the run, the line's time does not take that

@@ -104,6 +104,15 @@ impl Span {
         }
     }
 
+    /// The move `mv` as programmed, a line or an arc.
+    pub(super) fn programmed(mv: Move) -> Span {
+        let curve = match mv.source {
+            Source::Arc(a) => Curve::Arc(a),
+            Source::Line(l) => Curve::Line(l),
+        };
+        Span::single(curve, mv)
+    }
+
     /// The line of `moves`, which continue one line.
     pub(super) fn line(moves: &[Move]) -> Span {
         let (first, last) = (moves[0], moves[moves.len() - 1]);

@@ -4,8 +4,7 @@
 
 use super::{line_of, Fit};
 use crate::config::Machine;
-use crate::feed::bands::Banded;
-use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits, ProfileKind};
+use crate::feed::{scurve7, scurve7_banded, BlockRequest, FeedLaw, Limits};
 use crate::geometry::{add, scale, Line, Source};
 use crate::path::chain::{Curve, CurveLimits, Piece};
 use crate::path::hermite::Hermite;
@@ -190,11 +189,7 @@ pub(super) fn slower_from_entry(
     [v_curve, v_line]: [f64; 2],
     m: &Machine,
 ) -> bool {
-    let b = Banded {
-        kind: ProfileKind::Scurve7,
-        top: &own.limits,
-        bands: &own.bands,
-    };
+    let b = own.banded();
     let curve = scurve7_banded::plan_time(&b, length, v_curve.min(own.class), 0.0, own.class).0;
     curve > corners_time_from(span, 0.0, [v_line, 0.0], m)
 }
@@ -230,11 +225,7 @@ pub(super) fn slower_from_rest(length: f64, own: &CurveLimits, v_out: f64, stops
     if tightest.duration() <= stops {
         return false;
     }
-    let b = Banded {
-        kind: ProfileKind::Scurve7,
-        top: &own.limits,
-        bands: &own.bands,
-    };
+    let b = own.banded();
     let curve = scurve7_banded::plan_time(&b, length, 0.0, v_out, own.class).0;
     curve > stops
 }
@@ -301,11 +292,7 @@ pub(super) fn slower_between(
     if tightest <= lines {
         return false;
     }
-    let b = Banded {
-        kind: ProfileKind::Scurve7,
-        top: &own.limits,
-        bands: &own.bands,
-    };
+    let b = own.banded();
     let v_out = v_out.min(b.max_exit(length, v_in));
     let v_in = v_in.min(b.max_entry(length, v_out));
     scurve7_banded::plan_time(&b, length, v_in, v_out, class).0 > lines

@@ -5,7 +5,6 @@
 use super::baseline::{slower_between, slower_from_entry};
 use super::{line_of, Fit};
 use crate::config::Machine;
-use crate::geometry::Source;
 use crate::path::chain::{Curve, CurveLimits, Piece};
 use crate::path::hermite::Hermite;
 use crate::path::junction::{corner_ceiling, end_reach};
@@ -155,13 +154,7 @@ pub(super) fn exit_ceilings(span: Fit, h: &Hermite, m: &Machine) -> Option<[f64;
         return Some([0.0; 2]);
     }
     let next = span.after?;
-    let after = Span::single(
-        match next.source {
-            Source::Arc(a) => Curve::Arc(a),
-            Source::Line(l) => Curve::Line(l),
-        },
-        *next,
-    );
+    let after = Span::programmed(*next);
     let moves = &span.run[span.from..span.to];
     let last = moves[moves.len() - 1];
     let curve = Span::fitted(Piece::whole(Curve::Hermite(*h), moves[0].line), moves);
